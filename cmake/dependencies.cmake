@@ -1,0 +1,20 @@
+# Third-party libraries, all from Debian 12 packages (see README.md for the apt line).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(fmt REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(tomlplusplus REQUIRED)
+find_package(Boost 1.74 REQUIRED COMPONENTS graph)
+find_package(CGAL REQUIRED)
+find_package(VTK REQUIRED COMPONENTS
+  CommonCore CommonDataModel CommonExecutionModel
+  FiltersCore FiltersGeneral
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage)
+
+# CHOLMOD (SuiteSparse) is the sparse direct solver: supernodal Cholesky is several
+# times faster than Eigen's simplicial one on 3-D stiffness matrices.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+add_library(ligsim_cholmod INTERFACE)
+target_include_directories(ligsim_cholmod INTERFACE ${CHOLMOD_INCLUDE_DIR})
+target_link_libraries(ligsim_cholmod INTERFACE ${CHOLMOD_LIBRARY})

@@ -1,0 +1,109 @@
+#include "common/vtk_files.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+
+#include <vtkDataObject.h>
+#include <vtkDataSetWriter.h>
+#include <vtkImageData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkXMLImageDataWriter.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <sstream>
+
+namespace ligsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+vtkSmartPointer<vtkXMLWriter> xml_writer_for(const std::string& extension)
+{
+  if (extension == ".vti")
+    return vtkSmartPointer<vtkXMLImageDataWriter>::New();
+  if (extension == ".vtp")
+    return vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+  if (extension == ".vtu")
+    return vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
+  return nullptr;
+}
+
+template <class Reader>
+auto read_xml(const fs::path& file, const char* kind)
+{
+  if (!fs::exists(file))
+    fail("missing file '{}'", file.string());
+  auto reader = vtkSmartPointer<Reader>::New();
+  if (!reader->CanReadFile(file.c_str()))
+    fail("'{}' is not a VTK XML {} file", file.string(), kind);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  auto output = reader->GetOutput();
+  if (output == nullptr)
+    fail("cannot read '{}'", file.string());
+  using Output = std::remove_pointer_t<decltype(output)>;
+  vtkSmartPointer<Output> result = output;
+  return result;
+}
+
+} // namespace
+
+void write_vtk(vtkDataObject* data, const fs::path& file)
+{
+  const std::string extension = file.extension().string();
+  AtomicFile atomic(file);
+  int ok = 0;
+  if (auto writer = xml_writer_for(extension)) {
+    writer->SetInputData(data);
+    writer->SetFileName(atomic.temp_path().c_str());
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    ok = writer->Write();
+  } else if (extension == ".vtk") {
+    auto writer = vtkSmartPointer<vtkDataSetWriter>::New();
+    writer->SetInputData(data);
+    writer->SetFileName(atomic.temp_path().c_str());
+    writer->SetFileTypeToBinary();
+    ok = writer->Write();
+  } else {
+    fail("cannot write '{}': unknown VTK extension '{}' (use .vti, .vtp, .vtu or .vtk)",
+         file.string(), extension);
+  }
+  if (ok != 1)
+    fail("writing '{}' failed", file.string());
+  atomic.commit();
+}
+
+vtkSmartPointer<vtkImageData> read_vti(const fs::path& file)
+{
+  return read_xml<vtkXMLImageDataReader>(file, "image (.vti)");
+}
+
+vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file)
+{
+  return read_xml<vtkXMLPolyDataReader>(file, "poly data (.vtp)");
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file)
+{
+  return read_xml<vtkXMLUnstructuredGridReader>(file, "unstructured grid (.vtu)");
+}
+
+void write_pvd(const fs::path& file, const std::vector<std::pair<double, std::string>>& steps)
+{
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  for (const auto& [time, name] : steps)
+    out << "    <DataSet timestep=\"" << time << "\" part=\"0\" file=\"" << name << "\"/>\n";
+  out << "  </Collection>\n</VTKFile>\n";
+  write_text_atomically(file, out.str());
+}
+
+} // namespace ligsim

@@ -1,0 +1,20 @@
+#pragma once
+/// @brief The ligsim subcommands. Each add_* function registers one job (or one family of
+/// jobs) on the top-level CLI; its callback runs the job and throws ligsim::Error on failure.
+
+namespace CLI {
+class App;
+}
+
+namespace ligsim::cli {
+
+/// `build` and one subcommand per model-building stage (voxelize ... model).
+void add_build_commands(CLI::App& app);
+/// `simulate`: run a hyperelastic scene file.
+void add_simulate_command(CLI::App& app);
+/// `verify`: cube against FEBio, error against run time, stability report.
+void add_verify_command(CLI::App& app);
+/// `tear`: membrane tearing scenes.
+void add_tear_command(CLI::App& app);
+
+} // namespace ligsim::cli
