@@ -1,0 +1,183 @@
+#include "sim/material/weiss_material.hpp"
+
+#include "sim/material/volumetric_law.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <limits>
+
+namespace ligsim::sim {
+
+namespace {
+
+using Rows4x3 = Eigen::Matrix<double, 4, 3, Eigen::RowMajor>;
+
+/// Cofactor matrix of F, dJ/dF: its columns are the cross products of F's other two columns.
+Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F)
+{
+  Eigen::Matrix3d C;
+  C.col(0) = F.col(1).cross(F.col(2));
+  C.col(1) = F.col(2).cross(F.col(0));
+  C.col(2) = F.col(0).cross(F.col(1));
+  return C;
+}
+
+Eigen::Map<const Vector12d> flat(const Rows4x3& rows) { return Eigen::Map<const Vector12d>(rows.data()); }
+
+} // namespace
+
+WeissMaterial::WeissMaterial(const MaterialParameters& parameters)
+  : m_parameters(parameters)
+{
+  validate(parameters);
+  if (parameters.fiber)
+    m_fiber_law.emplace(*parameters.fiber);
+}
+
+void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
+                             const Eigen::Vector3d& fiber, ElementNeeds needs,
+                             ElementEvaluation& out) const
+{
+  const auto& D = shape.D;
+  // Eq. 2: deformation gradient F = sum_i Q_i (outer) D_i.
+  const Eigen::Matrix3d F = Q.transpose() * D;
+  const double J = F.determinant();
+  out.J = J;
+  out.inverted = !(J > 0.0) || !std::isfinite(J);
+  if (out.inverted) {
+    out.energy = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const double mu = m_parameters.mu_mpa;
+  const double trace_c = F.squaredNorm(); // tr C (eq. 3)
+  const double s = std::pow(J, -2.0 / 3.0);
+  const double i1 = s * trace_c; // eq. 6
+  const VolumetricResponse volumetric =
+      volumetric_response(m_parameters.volumetric, m_parameters.bulk_modulus_mpa, J);
+
+  // Fiber family (eq. 6, 14-21): I4 = J^-2/3 aCa = lambda^2.
+  Eigen::Vector3d fa = Eigen::Vector3d::Zero();
+  double aca = 0.0;
+  FiberResponse fiber_response;
+  double lambda = 0.0;
+  if (m_fiber_law) {
+    fa = F * fiber;
+    aca = fa.squaredNorm();
+    lambda = std::sqrt(s * aca);
+    fiber_response = m_fiber_law->evaluate(lambda);
+  }
+  const bool fiber_active = m_fiber_law && lambda >= 1.0;
+
+  const double V0 = shape.V0;
+  out.energy = V0 * (0.5 * mu * (i1 - 3.0) + fiber_response.energy + volumetric.energy);
+  if (needs == ElementNeeds::energy)
+    return;
+
+  // First derivatives of the scalar building blocks w.r.t. the 12 node coordinates:
+  // dJ/dQ_i = cof(F) D_i (eq. 7: (b x c)/(6 V0)), d trC/dQ_i = 2 F D_i (eq. 10),
+  // d aCa/dQ_i = 2 (a . D_i) F a (eq. 16).
+  const Eigen::Matrix3d cof = cofactor(F);
+  const Rows4x3 grad_j = D * cof.transpose();
+  const Rows4x3 grad_tr = 2.0 * D * F.transpose();
+  const double s_j = -2.0 / 3.0 * s / J;          // d J^-2/3 / dJ
+  const double s_jj = 10.0 / 9.0 * s / (J * J);   // d^2 J^-2/3 / dJ^2 (eq. 12)
+  // dF_C/dI4 = F_C'(lambda) / (2 lambda) (eq. 15), and d^2F_C/dI4^2 (eq. 19).
+  double phi = 0.0;
+  double psi = 0.0;
+  Eigen::Vector4d a_dot_d = Eigen::Vector4d::Zero();
+  Rows4x3 grad_aca = Rows4x3::Zero();
+  if (fiber_active) {
+    phi = fiber_response.d1 / (2.0 * lambda);
+    psi = fiber_response.d2 / (4.0 * lambda * lambda) -
+          fiber_response.d1 / (4.0 * lambda * lambda * lambda);
+    a_dot_d = D * fiber;
+    grad_aca = 2.0 * a_dot_d * fa.transpose();
+  }
+
+  // Gradient (eq. 11, 15-17, 23) collected per building block:
+  // dW = mu/2 s dtrC + phi s daCa + (mu/2 trC + phi aCa) s_j dJ + F_V' dJ.
+  const double scale_t = 0.5 * mu * s;
+  const double scale_a = phi * s;
+  const double through_j = (0.5 * mu * trace_c + phi * aca);
+  const double scale_j = through_j * s_j + volumetric.d1;
+  Rows4x3 gradient = scale_t * grad_tr + scale_j * grad_j;
+  if (fiber_active)
+    gradient += scale_a * grad_aca;
+  out.gradient = V0 * flat(gradient);
+  if (needs == ElementNeeds::gradient)
+    return;
+
+  // Hessian (eq. 8, 12-13, 18-21, 24), grouped by the outer products it is made of:
+  //   (through_j s_jj + F_V'') dJ dJ^T                     second derivative of J^-2/3, F_V
+  // + u dJ^T + dJ u^T, u = s_j (mu/2 dtrC + phi daCa)       cross terms of eq. 13 and 20
+  // + psi v v^T, v = dI4 = s daCa + aCa s_j dJ             eq. 19, first term
+  // + (through_j s_j + F_V') d^2J                           eq. 8, 12, 24
+  // + (mu s (D_i . D_j) + 2 phi s (a . D_i)(a . D_j)) 1      eq. 12 and 21
+  const auto dj = flat(grad_j);
+  Rows4x3 u_rows = s_j * 0.5 * mu * grad_tr;
+  if (fiber_active)
+    u_rows += s_j * phi * grad_aca;
+  const auto u = flat(u_rows);
+  Matrix12d& H = out.hessian;
+  H.noalias() = (through_j * s_jj + volumetric.d2) * dj * dj.transpose();
+  H.noalias() += u * dj.transpose();
+  H.noalias() += dj * u.transpose();
+  if (fiber_active) {
+    const Rows4x3 v_rows = s * grad_aca + aca * s_j * grad_j;
+    const auto v = flat(v_rows);
+    H.noalias() += psi * v * v.transpose();
+  }
+  // d^2J/dQ_i dQ_j = -[w]x with w = F (D_i x D_j): the current edge opposite to i and j over
+  // 6 V0, as in eq. 8.
+  const double scale_hj = through_j * s_j + volumetric.d1;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double diagonal =
+          mu * s * D.row(i).dot(D.row(j)) + 2.0 * phi * s * a_dot_d(i) * a_dot_d(j);
+      for (int a = 0; a < 3; ++a)
+        H(3 * i + a, 3 * j + a) += diagonal;
+    }
+    for (int j = i + 1; j < 4; ++j) {
+      const Eigen::Vector3d w =
+          scale_hj * (F * D.row(i).transpose().cross(D.row(j).transpose()));
+      Eigen::Matrix3d block;
+      block << 0.0, w(2), -w(1), -w(2), 0.0, w(0), w(1), -w(0), 0.0;
+      H.block<3, 3>(3 * i, 3 * j) += block;
+      H.block<3, 3>(3 * j, 3 * i) += block.transpose();
+    }
+  }
+  H *= V0;
+}
+
+ElementMeasures WeissMaterial::measures(const TetCorners& Q, const TetShape& shape,
+                                        const Eigen::Vector3d& fiber) const
+{
+  ElementEvaluation evaluation;
+  evaluate(Q, shape, fiber, ElementNeeds::energy, evaluation);
+  ElementMeasures result;
+  result.J = evaluation.J;
+  if (evaluation.inverted)
+    return result;
+  result.energy_density_mpa = evaluation.energy / shape.V0;
+  if (m_fiber_law) {
+    const Eigen::Matrix3d F = Q.transpose() * shape.D;
+    result.fiber_stretch = (F * fiber).norm();
+    result.deviatoric_fiber_stretch = std::pow(evaluation.J, -1.0 / 3.0) * result.fiber_stretch;
+  }
+  return result;
+}
+
+bool project_to_psd(Matrix12d& H)
+{
+  Eigen::SelfAdjointEigenSolver<Matrix12d> eigen(H);
+  const auto& values = eigen.eigenvalues();
+  if (values.minCoeff() >= 0.0)
+    return false;
+  const Vector12d clamped = values.cwiseMax(0.0);
+  H.noalias() = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
+  return true;
+}
+
+} // namespace ligsim::sim
