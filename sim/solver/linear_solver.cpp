@@ -1,0 +1,75 @@
+#include "sim/solver/linear_solver.hpp"
+
+#include "common/error.hpp"
+#include "sim/solver/direct_cholesky.hpp"
+#include "sim/solver/filtered_pcg.hpp"
+
+namespace ligsim::sim {
+
+LinearSolverKind parse_linear_solver(const std::string& text, const std::string& where)
+{
+  if (text == "direct")
+    return LinearSolverKind::direct;
+  if (text == "pcg")
+    return LinearSolverKind::pcg;
+  fail("{}: linear solver must be \"direct\" or \"pcg\", got \"{}\"", where, text);
+}
+
+std::string to_string(LinearSolverKind kind)
+{
+  return kind == LinearSolverKind::direct ? "direct" : "pcg";
+}
+
+StiffnessSolver::StiffnessSolver(const HyperelasticBody& body, const DofPartition& dofs,
+                                 LinearSolverKind kind, const PcgSettings& pcg)
+  : m_body(body)
+  , m_dofs(dofs)
+  , m_kind(kind)
+{
+  if (kind == LinearSolverKind::direct)
+    m_direct = std::make_unique<DirectCholesky>(body, dofs);
+  else
+    m_pcg = std::make_unique<FilteredPcg>(body, dofs, pcg);
+}
+
+StiffnessSolver::~StiffnessSolver() = default;
+
+int StiffnessSolver::prepare(const Eigen::VectorXd& x, bool project, double stiffness_scale,
+                             const Eigen::VectorXd& mass)
+{
+  if (m_direct)
+    return m_direct->prepare(m_body, x, project, stiffness_scale, mass);
+  Eigen::VectorXd mass_full;
+  if (mass.size() > 0) {
+    mass_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
+    for (int f = 0; f < m_dofs.free_count(); ++f)
+      mass_full(m_dofs.free_dofs()[static_cast<std::size_t>(f)]) = mass(f);
+  }
+  return m_pcg->prepare(m_body, x, project, stiffness_scale, mass_full);
+}
+
+LinearSolveReport StiffnessSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& y)
+{
+  if (m_direct)
+    return m_direct->solve(b, y);
+  const auto& free_dofs = m_dofs.free_dofs();
+  Eigen::VectorXd b_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
+  Eigen::VectorXd y_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
+    b_full(free_dofs[f]) = b(static_cast<Eigen::Index>(f));
+    if (y.size() == b.size())
+      y_full(free_dofs[f]) = y(static_cast<Eigen::Index>(f));
+  }
+  const LinearSolveReport report = m_pcg->solve(b_full, y_full);
+  y.resize(b.size());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    y(static_cast<Eigen::Index>(f)) = y_full(free_dofs[f]);
+  return report;
+}
+
+std::size_t StiffnessSolver::stored_values() const
+{
+  return m_direct ? m_direct->stored_values() : m_pcg->stored_values();
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,348 @@
+#include "sim/solver/static_solver.hpp"
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace ligsim::sim {
+
+namespace {
+
+constexpr int max_line_search_steps = 30;
+constexpr double armijo = 1e-4;
+/// Relative size of an energy change that round-off can produce in the element sum.
+constexpr double energy_round_off = 1e-12;
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+PsdProjection parse_psd_projection(const std::string& text, const std::string& where)
+{
+  if (text == "auto")
+    return PsdProjection::automatic;
+  if (text == "always")
+    return PsdProjection::always;
+  if (text == "never")
+    return PsdProjection::never;
+  fail("{}: psd_projection must be \"auto\", \"always\" or \"never\", got \"{}\"", where, text);
+}
+
+std::string to_string(PsdProjection projection)
+{
+  switch (projection) {
+  case PsdProjection::automatic:
+    return "auto";
+  case PsdProjection::always:
+    return "always";
+  case PsdProjection::never:
+    return "never";
+  }
+  return "auto";
+}
+
+StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryConditions& conditions,
+                           const NewtonSettings& settings)
+  : m_body(body)
+  , m_conditions(conditions)
+  , m_settings(settings)
+  , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
+  , m_rest(body.rest_positions())
+  , m_external(m_dofs.external_forces(conditions))
+  , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+{
+  if (settings.load_steps < 1)
+    fail("solver: load_steps must be at least 1, got {}", settings.load_steps);
+  if (settings.max_iterations < 1)
+    fail("solver: max_iterations must be at least 1, got {}", settings.max_iterations);
+  if (!(settings.residual_tolerance > 0.0))
+    fail("solver: residual_tolerance must be positive, got {}", settings.residual_tolerance);
+  if (m_dofs.free_count() == 0)
+    fail("every degree of freedom is prescribed: nothing to solve");
+  const Tetrahedra& T = body.mesh().T;
+  for (Eigen::Index e = 0; e < T.rows(); ++e)
+    for (int i = 0; i < 4; ++i)
+      if (!m_dofs.is_free(3 * T(e, i)) || !m_dofs.is_free(3 * T(e, i) + 1) ||
+          !m_dofs.is_free(3 * T(e, i) + 2)) {
+        m_boundary_elements.push_back(static_cast<int>(e));
+        break;
+      }
+  const Points& V = body.mesh().V;
+  const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
+}
+
+Eigen::VectorXd StaticSolver::free_part(const Eigen::VectorXd& full) const
+{
+  Eigen::VectorXd part(m_dofs.free_count());
+  const auto& free_dofs = m_dofs.free_dofs();
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    part(static_cast<Eigen::Index>(f)) = full(free_dofs[f]);
+  return part;
+}
+
+void StaticSolver::evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const
+{
+  out.body = m_body.energy_gradient(x, out.gradient);
+  out.gradient -= t * m_external;
+  out.total_energy = out.body.energy - t * m_external.dot(x - m_rest);
+}
+
+std::string StaticSolver::describe_inversion(const BodyEnergy& energy) const
+{
+  return fmt::format("element {} inverts (J = {:.3g})", energy.first_inverted, energy.inverted_j);
+}
+
+bool StaticSolver::newton_direction(const Eigen::VectorXd& x, const Eigen::VectorXd& rhs,
+                                    Eigen::VectorXd& direction, StepReport& report)
+{
+  bool project = m_settings.projection == PsdProjection::always;
+  for (;;) {
+    report.projected_elements += m_linear.prepare(x, project);
+    direction = Eigen::VectorXd::Zero(rhs.size());
+    const LinearSolveReport solve = m_linear.solve(rhs, direction);
+    report.linear_iterations += solve.iterations;
+    report.factorizations += solve.factorizations;
+    // A Newton step must go downhill in energy: rhs is minus the gradient.
+    const bool downhill = solve.ok && direction.allFinite() && direction.dot(rhs) > 0.0;
+    if (downhill)
+      return true;
+    if (!project && m_settings.projection == PsdProjection::automatic &&
+        (solve.indefinite || solve.ok)) {
+      project = true;
+      continue;
+    }
+    if (solve.indefinite)
+      m_failure = project ? "the projected stiffness matrix is singular (are rigid motions "
+                            "constrained?)"
+                          : "the stiffness matrix is indefinite (psd_projection = never)";
+    else if (!solve.ok)
+      m_failure = fmt::format("the linear solver did not converge (relative residual {:.3g} "
+                              "after {} CG iterations)",
+                              solve.relative_residual, solve.iterations);
+    else
+      m_failure = "the Newton direction does not decrease the energy";
+    return false;
+  }
+}
+
+bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report)
+{
+  Eigen::VectorXd target = x;
+  m_dofs.apply_targets(m_conditions, m_body.mesh().V, t1, target);
+  const Eigen::VectorXd shift = target - x;
+  if (shift.lpNorm<Eigen::Infinity>() == 0.0)
+    return true;
+
+  // Linear predictor: K_ff d = -(r_f + K_fc shift), with K at the converged state x.
+  Evaluation at;
+  evaluate(x, t1, at);
+  Eigen::VectorXd coupling = Eigen::VectorXd::Zero(m_dofs.dof_count());
+  const Tetrahedra& T = m_body.mesh().T;
+  ElementEvaluation element;
+  for (int e : m_boundary_elements) {
+    Vector12d local_shift;
+    for (int i = 0; i < 4; ++i)
+      local_shift.segment<3>(3 * i) = shift.segment<3>(3 * T(e, i));
+    if (local_shift.lpNorm<Eigen::Infinity>() == 0.0)
+      continue;
+    m_body.material().evaluate(tet_corners(T, e, x), m_body.shape(e), m_body.fiber(e),
+                               ElementNeeds::hessian, element);
+    const Vector12d force = element.hessian * local_shift;
+    for (int i = 0; i < 4; ++i)
+      coupling.segment<3>(3 * T(e, i)) += force.segment<3>(3 * i);
+  }
+  const Eigen::VectorXd rhs = -free_part(at.gradient + coupling);
+  Eigen::VectorXd predictor;
+  if (!newton_direction(x, rhs, predictor, report))
+    predictor = Eigen::VectorXd::Zero(rhs.size()); // the prescribed move alone, checked below
+
+  const auto& free_dofs = m_dofs.free_dofs();
+  BodyEnergy energy;
+  for (double alpha = 1.0; alpha > 1e-3; alpha *= 0.5) {
+    Eigen::VectorXd trial = target;
+    for (std::size_t f = 0; f < free_dofs.size(); ++f)
+      trial(free_dofs[f]) += alpha * predictor(static_cast<Eigen::Index>(f));
+    energy = m_body.energy(trial);
+    if (std::isfinite(energy.energy)) {
+      x = trial;
+      return true;
+    }
+  }
+  m_failure = fmt::format("moving the prescribed nodes to load factor {:.4g}: {}", t1,
+                          describe_inversion(energy));
+  return false;
+}
+
+bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport& report)
+{
+  (void)t0;
+  if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
+    return false;
+
+  const auto& free_dofs = m_dofs.free_dofs();
+  Evaluation current;
+  evaluate(x, t1, current);
+  if (!std::isfinite(current.body.energy)) {
+    m_failure = describe_inversion(current.body);
+    return false;
+  }
+  double first_energy_change = 0.0;
+  double last_energy_change = 0.0;
+  for (int iteration = 0;; ++iteration) {
+    const Eigen::VectorXd residual = free_part(current.gradient);
+    if (!residual.allFinite()) {
+      m_failure = "the internal forces are not finite";
+      return false;
+    }
+    double reaction_norm2 = 0.0;
+    for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
+      if (!m_dofs.is_free(dof))
+        reaction_norm2 += current.gradient(dof) * current.gradient(dof);
+    const double scale = std::max({(t1 * m_external).norm(), std::sqrt(reaction_norm2),
+                                   m_force_floor});
+    report.relative_residual = residual.norm() / scale;
+    const bool small_residual = report.relative_residual <= m_settings.residual_tolerance ||
+                                residual.norm() <= m_force_floor;
+    const bool small_energy_change =
+        iteration == 0 || last_energy_change <= m_settings.energy_tolerance * first_energy_change;
+    if (small_residual && small_energy_change)
+      return true;
+    if (iteration == m_settings.max_iterations) {
+      m_failure = fmt::format("no convergence in {} Newton iterations (relative residual {:.3g})",
+                              iteration, report.relative_residual);
+      return false;
+    }
+    ++report.iterations;
+
+    Eigen::VectorXd direction;
+    if (!newton_direction(x, -residual, direction, report))
+      return false;
+    const double slope = residual.dot(direction); // < 0
+
+    // Backtracking line search on the total energy.
+    const double energy_scale = std::abs(current.body.energy) +
+                                std::abs(t1 * m_external.dot(x - m_rest)) + m_force_floor;
+    double alpha = 1.0;
+    bool accepted = false;
+    Evaluation trial;
+    Eigen::VectorXd x_trial;
+    BodyEnergy last_inversion;
+    for (int k = 0; k < max_line_search_steps; ++k) {
+      x_trial = x;
+      for (std::size_t f = 0; f < free_dofs.size(); ++f)
+        x_trial(free_dofs[f]) += alpha * direction(static_cast<Eigen::Index>(f));
+      evaluate(x_trial, t1, trial);
+      if (std::isfinite(trial.total_energy)) {
+        const double change = trial.total_energy - current.total_energy;
+        if (change <= armijo * alpha * slope) {
+          accepted = true;
+        } else if (std::abs(change) <= energy_round_off * energy_scale &&
+                   free_part(trial.gradient).norm() < residual.norm()) {
+          accepted = true; // the energy is flat to round-off: accept a smaller residual
+        }
+        if (accepted)
+          break;
+        // Minimiser of the quadratic through E(0), E'(0) and E(alpha), kept in [0.1, 0.5] alpha.
+        const double curvature = change - alpha * slope;
+        const double next = curvature > 0.0 ? -slope * alpha * alpha / (2.0 * curvature) : 0.5;
+        alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+      } else {
+        last_inversion = trial.body;
+        alpha *= 0.5;
+      }
+      ++report.line_search_backtracks;
+    }
+    if (!accepted) {
+      m_failure = last_inversion.first_inverted >= 0
+                      ? fmt::format("the line search found no admissible step: {}",
+                                    describe_inversion(last_inversion))
+                      : "the line search found no energy decrease";
+      return false;
+    }
+    if (m_settings.verbose)
+      log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g}", t1,
+                           iteration + 1, report.relative_residual, alpha));
+    last_energy_change = std::abs(alpha * slope);
+    if (iteration == 0)
+      first_energy_change = last_energy_change;
+    x.swap(x_trial);
+    std::swap(current, trial);
+  }
+}
+
+StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step)
+{
+  const auto start = std::chrono::steady_clock::now();
+  StaticResult result;
+  if (x.size() != m_dofs.dof_count() || !x.allFinite()) {
+    result.failure = "the initial positions are missing or not finite";
+    return result;
+  }
+  const int steps = m_settings.load_steps;
+  const double nominal = 1.0 / steps;
+  double t = 0.0;
+  double dt = nominal;
+  for (int step = 1; step <= steps; ++step) {
+    const auto step_start = std::chrono::steady_clock::now();
+    StepReport report;
+    report.step = step;
+    const double t_end = static_cast<double>(step) / steps;
+    while (t < t_end - 1e-14) {
+      const double t_next = std::min(t_end, t + dt);
+      const Eigen::VectorXd saved = x;
+      m_failure.clear();
+      ++report.substeps;
+      if (advance(x, t, t_next, report)) {
+        t = t_next;
+        dt = std::min(nominal, 2.0 * dt);
+        continue;
+      }
+      x = saved;
+      ++report.cutbacks;
+      ++result.cutbacks;
+      dt *= 0.5;
+      if (report.cutbacks > m_settings.max_cutbacks) {
+        result.failure = fmt::format("load step {} (load factor {:.4g}) failed after {} "
+                                     "cut-backs: {}",
+                                     step, t_next, m_settings.max_cutbacks, m_failure);
+        report.wall_s = seconds_since(step_start);
+        report.load_factor = t;
+        result.steps.push_back(report);
+        result.newton_iterations += report.iterations;
+        result.projected_elements += report.projected_elements;
+        result.linear_iterations += report.linear_iterations;
+        result.factorizations += report.factorizations;
+        result.wall_s = seconds_since(start);
+        return result;
+      }
+    }
+    report.converged = true;
+    report.load_factor = t_end;
+    Eigen::VectorXd gradient;
+    report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
+    gradient -= t_end * m_external;
+    std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
+    report.wall_s = seconds_since(step_start);
+    result.newton_iterations += report.iterations;
+    result.projected_elements += report.projected_elements;
+    result.linear_iterations += report.linear_iterations;
+    result.factorizations += report.factorizations;
+    result.steps.push_back(report);
+    if (on_step)
+      on_step(report, x, gradient);
+  }
+  result.converged = true;
+  result.wall_s = seconds_since(start);
+  return result;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,93 @@
+#include "sim/solver/stiffness_matrix.hpp"
+
+#include <algorithm>
+
+namespace ligsim::sim {
+
+StiffnessMatrix::StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs)
+{
+  const int node_count = dofs.dof_count() / 3;
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(node_count));
+  for (Eigen::Index e = 0; e < T.rows(); ++e)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        neighbours[static_cast<std::size_t>(T(e, i))].push_back(T(e, j));
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+
+  // Column c (free DOF 3n + a) holds the free DOFs 3m + b >= 3n + a of n's neighbours m. The
+  // free numbering follows the global one, so rows come out sorted.
+  const int n_free = dofs.free_count();
+  std::vector<int> outer(static_cast<std::size_t>(n_free) + 1, 0);
+  std::vector<int> inner;
+  for (int column = 0; column < n_free; ++column) {
+    const int dof = dofs.free_dofs()[static_cast<std::size_t>(column)];
+    const int node = dof / 3;
+    for (int m : neighbours[static_cast<std::size_t>(node)])
+      for (int b = 0; b < 3; ++b) {
+        const int row_dof = 3 * m + b;
+        if (row_dof >= dof && dofs.is_free(row_dof))
+          inner.push_back(dofs.free_index(row_dof));
+      }
+    outer[static_cast<std::size_t>(column) + 1] = static_cast<int>(inner.size());
+  }
+  m_matrix.resize(n_free, n_free);
+  m_matrix.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), m_matrix.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), m_matrix.innerIndexPtr());
+  set_zero();
+
+  auto position = [&](int row, int column) {
+    const int* first = m_matrix.innerIndexPtr() + outer[static_cast<std::size_t>(column)];
+    const int* last = m_matrix.innerIndexPtr() + outer[static_cast<std::size_t>(column) + 1];
+    return static_cast<int>(std::lower_bound(first, last, row) - m_matrix.innerIndexPtr());
+  };
+  m_diagonal.resize(static_cast<std::size_t>(n_free));
+  for (int column = 0; column < n_free; ++column)
+    m_diagonal[static_cast<std::size_t>(column)] = position(column, column);
+
+  m_scatter.assign(static_cast<std::size_t>(T.rows()) * pair_count, -1);
+  for (Eigen::Index e = 0; e < T.rows(); ++e) {
+    int k = 0;
+    for (int p = 0; p < 12; ++p)
+      for (int q = p; q < 12; ++q, ++k) {
+        const int fp = dofs.free_index(3 * T(e, p / 3) + p % 3);
+        const int fq = dofs.free_index(3 * T(e, q / 3) + q % 3);
+        if (fp >= 0 && fq >= 0)
+          m_scatter[static_cast<std::size_t>(e) * pair_count + static_cast<std::size_t>(k)] =
+              position(std::max(fp, fq), std::min(fp, fq));
+      }
+  }
+}
+
+void StiffnessMatrix::set_zero()
+{
+  std::fill(m_matrix.valuePtr(), m_matrix.valuePtr() + m_matrix.nonZeros(), 0.0);
+}
+
+void StiffnessMatrix::add_element(Eigen::Index e, const Matrix12d& H, double scale)
+{
+  const int* scatter = m_scatter.data() + static_cast<std::size_t>(e) * pair_count;
+  double* values = m_matrix.valuePtr();
+  int k = 0;
+  for (int p = 0; p < 12; ++p)
+    for (int q = p; q < 12; ++q, ++k)
+      if (scatter[k] >= 0)
+        values[scatter[k]] += scale * H(p, q);
+}
+
+void StiffnessMatrix::add_diagonal(const Eigen::VectorXd& diagonal)
+{
+  double* values = m_matrix.valuePtr();
+  for (std::size_t c = 0; c < m_diagonal.size(); ++c)
+    values[m_diagonal[c]] += diagonal(static_cast<Eigen::Index>(c));
+}
+
+void StiffnessMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+{
+  y = m_matrix.selfadjointView<Eigen::Lower>() * x;
+}
+
+} // namespace ligsim::sim

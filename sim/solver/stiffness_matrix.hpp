@@ -1,0 +1,40 @@
+#pragma once
+/// @brief The global stiffness of the free DOFs as a sparse lower triangle (CSC), with its
+/// pattern built once and element blocks scattered straight into the value array.
+
+#include "common/mesh.hpp"
+#include "sim/material/weiss_material.hpp"
+#include "sim/solver/boundary_conditions.hpp"
+
+#include <Eigen/SparseCore>
+
+#include <array>
+#include <vector>
+
+namespace ligsim::sim {
+
+class StiffnessMatrix {
+public:
+  StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs);
+
+  /// Lower triangle (with the diagonal) of the free-DOF matrix, compressed column storage.
+  const Eigen::SparseMatrix<double>& matrix() const { return m_matrix; }
+  Eigen::Index nonzeros() const { return m_matrix.nonZeros(); }
+
+  void set_zero();
+  /// Adds scale * H_e of element e (node-major 12 x 12) to the free-DOF entries.
+  void add_element(Eigen::Index e, const Matrix12d& H, double scale = 1.0);
+  /// Adds `diagonal` (one value per free DOF) to the diagonal.
+  void add_diagonal(const Eigen::VectorXd& diagonal);
+  /// y = A x for the symmetric matrix (both triangles), free DOFs.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
+private:
+  /// Local pairs (p <= q) of a 12 x 12 block, in the order of m_scatter's entries.
+  static constexpr int pair_count = 78;
+  Eigen::SparseMatrix<double> m_matrix;
+  std::vector<int> m_scatter;  ///< pair_count value positions per element, -1 when prescribed
+  std::vector<int> m_diagonal; ///< value position of each column's diagonal
+};
+
+} // namespace ligsim::sim

@@ -1,0 +1,159 @@
+#include "sim/verify/cube_verification.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+namespace ligsim::sim {
+
+std::string to_string(CubeEnergy energy)
+{
+  return energy == CubeEnergy::matched ? "matched" : "paper";
+}
+
+MaterialParameters cube_material(const FebioCase& c, CubeEnergy energy)
+{
+  MaterialParameters material = c.material;
+  if (energy == CubeEnergy::paper) {
+    material.fiber->convention = FiberConvention::paper;
+    material.volumetric = VolumetricLaw::jm1;
+  }
+  return material;
+}
+
+BoundaryConditions cube_conditions(const FebioCase& c, const std::vector<int>& bottom,
+                                   const std::vector<int>& top)
+{
+  BoundaryConditions conditions;
+  ConstraintSet fixed;
+  fixed.name = "bottom";
+  fixed.nodes = bottom;
+  conditions.constraints.push_back(fixed);
+  NodalLoad load;
+  load.name = "top";
+  load.nodes = top;
+  load.force_per_node_n = c.force_per_top_node_n;
+  conditions.loads.push_back(load);
+  return conditions;
+}
+
+CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEnergy energy,
+                             const NewtonSettings& settings, const Points& reference,
+                             double edge_mm, Eigen::VectorXd* x_out)
+{
+  const auto start = std::chrono::steady_clock::now();
+  CubeCaseResult result;
+  result.name = c.name;
+  result.energy = energy;
+  result.incompressibility = c.incompressibility;
+  result.febio_wall_s = c.febio.value("wall_s", 0.0);
+  result.load_steps = settings.load_steps;
+
+  FiberField fiber(1, 3);
+  fiber.row(0) = c.fiber.normalized().transpose();
+  const HyperelasticBody body(mesh.mesh, cube_material(c, energy), fiber);
+  const BoundaryConditions conditions = cube_conditions(c, mesh.bottom_nodes, mesh.top_nodes);
+  StaticSolver solver(body, conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  const StaticResult solved = solver.solve(x);
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.converged = solved.converged;
+  result.failure = solved.failure;
+  result.newton_iterations = solved.newton_iterations;
+  result.projected_elements = solved.projected_elements;
+  if (x_out)
+    *x_out = x;
+  if (!solved.converged)
+    return result;
+
+  const Eigen::VectorXd rest = body.rest_positions();
+  double top_uz = 0.0;
+  for (int node : mesh.top_nodes)
+    top_uz += x(3 * node + 2) - rest(3 * node + 2);
+  result.avg_top_uz_mm = top_uz / static_cast<double>(mesh.top_nodes.size());
+  result.volume_change_pct = 100.0 * (body.volume(x) / body.rest_volume() - 1.0);
+  double fiber_strain = 0.0;
+  for (Eigen::Index e = 0; e < body.element_count(); ++e)
+    fiber_strain += body.shape(e).V0 * (body.measures(x, e).fiber_stretch - 1.0);
+  result.avg_fiber_strain_pct = 100.0 * fiber_strain / body.rest_volume();
+
+  if (reference.rows() == body.node_count()) {
+    auto error_of = [&](int node) {
+      const Eigen::Vector3d ours = x.segment<3>(3 * node) - rest.segment<3>(3 * node);
+      return 100.0 * (ours - reference.row(node).transpose()).norm() / edge_mm;
+    };
+    double sum = 0.0;
+    for (int node : mesh.top_nodes) {
+      const double error = error_of(node);
+      sum += error;
+      result.max_error_pct = std::max(result.max_error_pct, error);
+    }
+    result.avg_error_pct = sum / static_cast<double>(mesh.top_nodes.size());
+    sum = 0.0;
+    for (int node = 0; node < body.node_count(); ++node) {
+      const double error = error_of(node);
+      sum += error;
+      result.max_error_all_pct = std::max(result.max_error_all_pct, error);
+    }
+    result.avg_error_all_pct = sum / body.node_count();
+  }
+  return result;
+}
+
+nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results)
+{
+  nlohmann::json cases = nlohmann::json::array();
+  for (const CubeCaseResult& r : results) {
+    nlohmann::json entry = {{"name", r.name},
+                            {"energy", to_string(r.energy)},
+                            {"avg_error_pct", r.avg_error_pct},
+                            {"max_error_pct", r.max_error_pct},
+                            {"avg_error_all_pct", r.avg_error_all_pct},
+                            {"max_error_all_pct", r.max_error_all_pct},
+                            {"avg_fiber_strain_pct", r.avg_fiber_strain_pct},
+                            {"volume_change_pct", r.volume_change_pct},
+                            {"wall_s", r.wall_s},
+                            {"febio_wall_s", r.febio_wall_s},
+                            {"converged", r.converged},
+                            {"incompressibility", r.incompressibility},
+                            {"avg_top_uz_mm", r.avg_top_uz_mm},
+                            {"newton_iterations", r.newton_iterations},
+                            {"load_steps", r.load_steps},
+                            {"projected_elements", r.projected_elements}};
+    if (!r.converged) {
+      entry["failure"] = r.failure;
+      for (const char* key : {"avg_error_pct", "max_error_pct", "avg_error_all_pct",
+                              "max_error_all_pct", "avg_fiber_strain_pct", "volume_change_pct",
+                              "avg_top_uz_mm"})
+        entry[key] = nullptr;
+    }
+    cases.push_back(entry);
+  }
+  return {{"cases", cases}};
+}
+
+std::string cube_results_table(const std::vector<CubeCaseResult>& results)
+{
+  std::string table =
+      "| case | energy | FEBio incompressibility | avg fiber strain | vol. change | avg error "
+      "(top) | max error (top) | avg error (all) | max error (all) | Newton it. | wall s | FEBio "
+      "wall s | speed-up |\n"
+      "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+      "|\n";
+  for (const CubeCaseResult& r : results) {
+    if (!r.converged) {
+      table += fmt::format("| {} | {} | {} | failed: {} |\n", r.name, to_string(r.energy),
+                           r.incompressibility, r.failure);
+      continue;
+    }
+    table += fmt::format("| {} | {} | {} | {:+.2f} % | {:+.2f} % | {:.4f} % | {:.4f} % | {:.4f} % "
+                         "| {:.4f} % | {} | {:.2f} | {:.1f} | {:.0f}x |\n",
+                         r.name, to_string(r.energy), r.incompressibility, r.avg_fiber_strain_pct,
+                         r.volume_change_pct, r.avg_error_pct, r.max_error_pct,
+                         r.avg_error_all_pct, r.max_error_all_pct, r.newton_iterations, r.wall_s,
+                         r.febio_wall_s, r.febio_wall_s / std::max(r.wall_s, 1e-9));
+  }
+  return table;
+}
+
+} // namespace ligsim::sim

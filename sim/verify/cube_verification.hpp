@@ -1,0 +1,65 @@
+#pragma once
+/// @brief The paper's cube experiments (sec. 5.1) against FEBio: one static solve per case and
+/// energy, node errors in percent of the edge, the table and verify.json.
+
+#include "sim/solver/static_solver.hpp"
+#include "sim/verify/febio_reference.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+/// Which energy a case is solved with.
+enum class CubeEnergy {
+  matched, ///< the case's own fiber convention and volumetric law, as FEBio ran it
+  paper,   ///< the paper's: fiber convention "paper", K/2 (J - 1)^2
+};
+
+std::string to_string(CubeEnergy energy);
+
+struct CubeCaseResult {
+  std::string name;
+  CubeEnergy energy = CubeEnergy::matched;
+  std::string incompressibility;
+  bool converged = false;
+  std::string failure;
+  /// Node position errors against FEBio in percent of the edge: top face, then all nodes.
+  double avg_error_pct = 0.0;
+  double max_error_pct = 0.0;
+  double avg_error_all_pct = 0.0;
+  double max_error_all_pct = 0.0;
+  double avg_fiber_strain_pct = 0.0; ///< volume-weighted mean of |F a| - 1
+  double volume_change_pct = 0.0;
+  double avg_top_uz_mm = 0.0;
+  double wall_s = 0.0; ///< set-up and solve, excluding file reading
+  double febio_wall_s = 0.0;
+  int newton_iterations = 0;
+  int load_steps = 0;
+  int projected_elements = 0;
+};
+
+/// Material of `c` for the chosen energy.
+MaterialParameters cube_material(const FebioCase& c, CubeEnergy energy);
+
+/// The case's boundary conditions on a cube mesh: `bottom` fixed in x, y, z, the case's force
+/// on every `top` node.
+BoundaryConditions cube_conditions(const FebioCase& c, const std::vector<int>& bottom,
+                                   const std::vector<int>& top);
+
+/// Solves one case on `mesh`; on a solver failure the result says so and has no errors.
+/// `reference` holds FEBio's displacements on the same mesh (empty: errors are not computed).
+/// `x_out` (optional) receives the final positions.
+CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEnergy energy,
+                             const NewtonSettings& settings, const Points& reference,
+                             double edge_mm, Eigen::VectorXd* x_out = nullptr);
+
+/// verify.json: {"cases": [...]} in the schema, plus our extra figures.
+nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results);
+
+/// Markdown table in the layout of the paper's Tables 1 and 2, with FEBio's wall time.
+std::string cube_results_table(const std::vector<CubeCaseResult>& results);
+
+} // namespace ligsim::sim
