@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/vtk_files.hpp"
 #include "pipeline/commands/commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 
 int main(int argc, char** argv)
 {
+  ligsim::silence_vtk_output();
   CLI::App app{"ligsim: subject-specific ligament models, hyperelastic simulation and "
                "membrane tearing"};
   app.require_subcommand(1);

@@ -1,0 +1,362 @@
+#include "stages/centerline/centerline.hpp"
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "stages/geometry/interpolate.hpp"
+
+#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ligsim::centerline {
+
+namespace {
+
+using VertexIndex = std::uint32_t;
+struct EdgeWeight {
+  float weight;
+};
+using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, EdgeWeight,
+                                                 boost::no_property, VertexIndex, VertexIndex>;
+
+/// Distances below this fraction of a voxel are clamped, so 1/d^2 stays finite on the surface.
+constexpr double kMinDistanceVoxels = 0.1;
+
+struct CostModel {
+  double alpha;
+  double d_max;
+  double d_min;
+  /// The medial weight 1/dn^2 at a distance d (mm).
+  double medial(double d) const
+  {
+    const double dn = std::max(d, d_min) / d_max;
+    return 1.0 / (dn * dn);
+  }
+  double step(double length, double d_a, double d_b) const
+  {
+    return length * (alpha * 0.5 * (medial(d_a) + medial(d_b)) + (1.0 - alpha));
+  }
+  /// The integrand of eq. 25 at a distance d (mm).
+  double density(double d) const { return alpha * medial(d) + (1.0 - alpha); }
+};
+
+CostModel cost_model(const ScalarGrid& distance, double alpha)
+{
+  const float d_max = *std::max_element(distance.values.begin(), distance.values.end());
+  if (!(d_max > 0.0f))
+    fail("the distance image has no inside voxel");
+  return {alpha, d_max, kMinDistanceVoxels * distance.spacing};
+}
+
+/// The inside voxel whose centre is nearest `p`.
+std::size_t nearest_inside(const Mask& mask, const Eigen::Vector3d& p)
+{
+  std::size_t best = mask.values.size();
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < mask.values.size(); ++v)
+    if (mask.values[v]) {
+      const double d = (mask.point(v) - p).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = v;
+      }
+    }
+  if (best == mask.values.size())
+    fail("the voxel image has no inside voxel");
+  return best;
+}
+
+double segment_cost(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const ScalarGrid& distance,
+                    const CostModel& model, bool* leaves_shape = nullptr)
+{
+  const double length = (b - a).norm();
+  const int samples = std::max(1, static_cast<int>(std::ceil(4.0 * length / distance.spacing)));
+  double cost = 0.0;
+  double d_prev = interpolate(distance, a);
+  for (int s = 1; s <= samples; ++s) {
+    const double d = interpolate(distance, a + (b - a) * (static_cast<double>(s) / samples));
+    if (leaves_shape && d <= 0.0)
+      *leaves_shape = true;
+    cost += model.step(length / samples, d_prev, d);
+    d_prev = d;
+  }
+  return cost;
+}
+
+/// Greedy string pulling: from each kept point, jump to the farthest later point whose straight
+/// segment stays inside and costs no more than the path it replaces.
+std::vector<Eigen::Vector3d> pull_string(const std::vector<Eigen::Vector3d>& path,
+                                         const ScalarGrid& distance, const CostModel& model)
+{
+  std::vector<double> prefix(path.size(), 0.0);
+  for (std::size_t i = 1; i < path.size(); ++i)
+    prefix[i] = prefix[i - 1] + segment_cost(path[i - 1], path[i], distance, model);
+  std::vector<Eigen::Vector3d> result{path.front()};
+  std::size_t i = 0;
+  while (i + 1 < path.size()) {
+    std::size_t next = i + 1;
+    for (std::size_t j = i + 2; j < path.size(); ++j) {
+      bool leaves = false;
+      const double cost = segment_cost(path[i], path[j], distance, model, &leaves);
+      if (leaves)
+        break; // out of sight: farther points are reached through a later corner
+      if (cost <= prefix[j] - prefix[i])
+        next = j;
+    }
+    result.push_back(path[next]);
+    i = next;
+  }
+  return result;
+}
+
+std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& line, double step)
+{
+  std::vector<double> arc(line.size(), 0.0);
+  for (std::size_t i = 1; i < line.size(); ++i)
+    arc[i] = arc[i - 1] + (line[i] - line[i - 1]).norm();
+  const int count = std::max(2, static_cast<int>(std::round(arc.back() / step)) + 1);
+  std::vector<Eigen::Vector3d> result;
+  std::size_t segment = 0;
+  for (int k = 0; k < count; ++k) {
+    const double s = arc.back() * k / (count - 1);
+    while (segment + 2 < line.size() && arc[segment + 1] < s)
+      ++segment;
+    const double span = arc[segment + 1] - arc[segment];
+    const double f = span > 0.0 ? std::clamp((s - arc[segment]) / span, 0.0, 1.0) : 0.0;
+    result.push_back(line[segment] + f * (line[segment + 1] - line[segment]));
+  }
+  return result;
+}
+
+/// Eq. 25 along a polyline by the midpoint rule.
+double line_energy(const std::vector<Eigen::Vector3d>& line, const ScalarGrid& distance,
+                   const CostModel& model)
+{
+  double energy = 0.0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    energy += (line[i + 1] - line[i]).norm() *
+              model.density(interpolate(distance, 0.5 * (line[i] + line[i + 1])));
+  return energy;
+}
+
+/// Moves the interior points, perpendicular to the line, downhill on eq. 25 (gradient descent
+/// with an adaptive step, ends fixed): the string-pulled path's corners sit on voxel centres;
+/// this smooths it towards the ridge of the interpolated distance.
+void relax(std::vector<Eigen::Vector3d>& line, const ScalarGrid& distance, const CostModel& model,
+           int iterations)
+{
+  if (line.size() < 3)
+    return;
+  const double h = 0.1 * distance.spacing; // finite-difference step for grad d
+  auto density_gradient = [&](const Eigen::Vector3d& p) {
+    Eigen::Vector3d g;
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
+      g[a] = (model.density(interpolate(distance, p + e)) - model.density(interpolate(distance, p - e))) / (2 * h);
+    }
+    return g;
+  };
+  double energy = line_energy(line, distance, model);
+  double step = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Eigen::Vector3d> gradient(line.size(), Eigen::Vector3d::Zero());
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Eigen::Vector3d e = line[i + 1] - line[i];
+      const double length = e.norm();
+      if (length == 0.0)
+        continue;
+      const Eigen::Vector3d mid = 0.5 * (line[i] + line[i + 1]);
+      const double w = model.density(interpolate(distance, mid));
+      const Eigen::Vector3d half_grad_w = 0.5 * length * density_gradient(mid);
+      gradient[i] += -w * e / length + half_grad_w;
+      gradient[i + 1] += w * e / length + half_grad_w;
+    }
+    // Only motion across the line counts: sliding along it changes nothing but the spacing.
+    double largest = 0.0;
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+      const Eigen::Vector3d t = (line[i + 1] - line[i - 1]).normalized();
+      gradient[i] -= gradient[i].dot(t) * t;
+      largest = std::max(largest, gradient[i].norm());
+    }
+    if (largest == 0.0)
+      return;
+    if (step == 0.0)
+      step = 0.1 * distance.spacing / largest;
+    // Backtrack until the energy drops and every point stays inside.
+    for (int tries = 0; tries < 20; ++tries) {
+      std::vector<Eigen::Vector3d> trial = line;
+      bool inside = true;
+      for (std::size_t i = 1; i + 1 < line.size() && inside; ++i) {
+        trial[i] -= step * gradient[i];
+        inside = interpolate(distance, trial[i]) > 0.0;
+      }
+      const double trial_energy = inside ? line_energy(trial, distance, model) : energy;
+      if (inside && trial_energy < energy) {
+        const bool converged = energy - trial_energy < 1e-7 * energy;
+        line.swap(trial);
+        energy = trial_energy;
+        step *= 1.5;
+        if (converged)
+          return;
+        break;
+      }
+      step *= 0.5;
+      if (tries == 19)
+        return;
+    }
+  }
+}
+
+/// Extends the line beyond its last point along its end direction until it meets the surface
+/// (the zero of the signed distance), in steps of `step`.
+void extend_end(std::vector<Eigen::Vector3d>& line, const ScalarGrid& distance, double step)
+{
+  const std::size_t back = std::min<std::size_t>(3, line.size() - 1);
+  const Eigen::Vector3d direction = (line.back() - line[line.size() - 1 - back]).normalized();
+  if (!direction.allFinite())
+    return;
+  const double limit = distance.spacing * distance.dims.cast<double>().norm();
+  Eigen::Vector3d p = line.back();
+  for (double travelled = 0.0; travelled < limit; travelled += step) {
+    const Eigen::Vector3d q = p + step * direction;
+    if (interpolate(distance, q) <= 0.0) {
+      // Bisect for the crossing between p (inside) and q (outside).
+      Eigen::Vector3d inside = p, outside = q;
+      for (int i = 0; i < 30; ++i) {
+        const Eigen::Vector3d mid = 0.5 * (inside + outside);
+        (interpolate(distance, mid) > 0.0 ? inside : outside) = mid;
+      }
+      if ((inside - line.back()).norm() > 0.25 * step)
+        line.push_back(inside);
+      return;
+    }
+    line.push_back(q);
+    p = q;
+  }
+}
+
+} // namespace
+
+double path_cost(const Points& points, const ScalarGrid& distance, double alpha)
+{
+  const CostModel model = cost_model(distance, alpha);
+  double cost = 0.0;
+  for (Eigen::Index i = 1; i < points.rows(); ++i)
+    cost += segment_cost(points.row(i - 1).transpose(), points.row(i).transpose(), distance, model);
+  return cost;
+}
+
+Centerline extract(const Mask& mask, const ScalarGrid& distance, const Eigen::Vector3d& start,
+                   const Eigen::Vector3d& end, const Parameters& parameters)
+{
+  if (!(parameters.alpha >= 0.0 && parameters.alpha <= 1.0))
+    fail("centerline alpha must lie in [0, 1], got {}", parameters.alpha);
+  const CostModel model = cost_model(distance, parameters.alpha);
+
+  // Graph nodes: the inside voxels, numbered in storage order.
+  std::vector<VertexIndex> node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max());
+  std::vector<std::size_t> voxel_of;
+  for (std::size_t v = 0; v < mask.values.size(); ++v)
+    if (mask.values[v]) {
+      node_of[v] = static_cast<VertexIndex>(voxel_of.size());
+      voxel_of.push_back(v);
+    }
+
+  // Edges in source order, as the CSR constructor wants them.
+  std::vector<std::pair<VertexIndex, VertexIndex>> edges;
+  std::vector<EdgeWeight> weights;
+  edges.reserve(voxel_of.size() * 26);
+  weights.reserve(voxel_of.size() * 26);
+  for (std::size_t node = 0; node < voxel_of.size(); ++node) {
+    const Eigen::Vector3i a = mask.ijk(voxel_of[node]);
+    const double d_a = distance.values[voxel_of[node]];
+    for (const Eigen::Vector3i& offset : neighbourhood_26()) {
+      const Eigen::Vector3i b = a + offset;
+      if (!mask.contains(b.x(), b.y(), b.z()) || !mask(b.x(), b.y(), b.z()))
+        continue;
+      const std::size_t voxel_b = mask.index(b.x(), b.y(), b.z());
+      const double length = mask.spacing * offset.cast<double>().norm();
+      edges.emplace_back(static_cast<VertexIndex>(node), node_of[voxel_b]);
+      weights.push_back({static_cast<float>(model.step(length, d_a, distance.values[voxel_b]))});
+    }
+  }
+  const Graph graph(boost::edges_are_sorted, edges.begin(), edges.end(), weights.begin(),
+                    static_cast<VertexIndex>(voxel_of.size()));
+  edges.clear();
+  edges.shrink_to_fit();
+
+  const std::size_t start_voxel = nearest_inside(mask, start);
+  const std::size_t end_voxel = nearest_inside(mask, end);
+  if (start_voxel == end_voxel)
+    fail("the two attachment areas map to the same voxel: no centerline between them");
+
+  std::vector<VertexIndex> predecessor(voxel_of.size());
+  std::vector<float> cost(voxel_of.size());
+  const auto index = boost::get(boost::vertex_index, graph);
+  boost::dijkstra_shortest_paths(
+    graph, node_of[start_voxel],
+    boost::predecessor_map(boost::make_iterator_property_map(predecessor.begin(), index))
+      .distance_map(boost::make_iterator_property_map(cost.begin(), index))
+      .weight_map(boost::get(&EdgeWeight::weight, graph)));
+
+  const VertexIndex target = node_of[end_voxel];
+  if (predecessor[target] == target)
+    fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
+         "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of the "
+         "voxel image (try a smaller voxel spacing)",
+         mask.point(start_voxel).x(), mask.point(start_voxel).y(), mask.point(start_voxel).z(),
+         mask.point(end_voxel).x(), mask.point(end_voxel).y(), mask.point(end_voxel).z());
+
+  Centerline result;
+  result.start_voxel = mask.ijk(start_voxel);
+  result.end_voxel = mask.ijk(end_voxel);
+  result.path_cost = cost[target];
+  std::vector<Eigen::Vector3d> path;
+  for (VertexIndex node = target;; node = predecessor[node]) {
+    result.voxel_path.push_back(mask.ijk(voxel_of[node]));
+    path.push_back(mask.point(voxel_of[node]));
+    if (node == node_of[start_voxel])
+      break;
+  }
+  std::reverse(result.voxel_path.begin(), result.voxel_path.end());
+  std::reverse(path.begin(), path.end());
+
+  if (parameters.refine && path.size() > 2)
+    path = pull_string(path, distance, model);
+  const double step =
+    parameters.point_spacing_mm > 0.0 ? parameters.point_spacing_mm : mask.spacing;
+  std::vector<Eigen::Vector3d> line = resample(path, step);
+  if (parameters.refine)
+    relax(line, distance, model, parameters.relax_iterations);
+  if (parameters.extend_to_surface) {
+    extend_end(line, distance, step);
+    std::reverse(line.begin(), line.end());
+    extend_end(line, distance, step);
+    std::reverse(line.begin(), line.end());
+    line = resample(line, step);
+  }
+  for (int pass = 0; pass < parameters.smoothing_passes; ++pass) {
+    std::vector<Eigen::Vector3d> smoothed = line;
+    for (std::size_t i = 1; i + 1 < line.size(); ++i)
+      smoothed[i] = 0.5 * line[i] + 0.25 * (line[i - 1] + line[i + 1]);
+    line.swap(smoothed);
+  }
+
+  const auto n = static_cast<Eigen::Index>(line.size());
+  result.points.resize(n, 3);
+  result.tangents.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    result.points.row(i) = line[i].transpose();
+    const Eigen::Vector3d t = line[std::min<std::size_t>(i + 1, line.size() - 1)] -
+                              line[std::max<Eigen::Index>(i - 1, 0)];
+    result.tangents.row(i) = t.normalized().transpose();
+  }
+  for (Eigen::Index i = 1; i < n; ++i)
+    result.length_mm += (result.points.row(i) - result.points.row(i - 1)).norm();
+  return result;
+}
+
+} // namespace ligsim::centerline

@@ -1,0 +1,136 @@
+#include "stages/io/surface_reader.hpp"
+
+#include "common/error.hpp"
+#include "common/vtk_files.hpp"
+#include "stages/geometry/surface_query.hpp"
+#include "stages/geometry/surface_topology.hpp"
+#include "stages/io/vtk_convert.hpp"
+
+#include <vtkCleanPolyData.h>
+#include <vtkOBJReader.h>
+#include <vtkPLYReader.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkSTLReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkTriangleFilter.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace ligsim::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const fs::path& file)
+{
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+template <class Reader>
+vtkSmartPointer<vtkPolyData> run_reader(const fs::path& file)
+{
+  auto reader = vtkSmartPointer<Reader>::New();
+  const VtkErrorTrap trap(reader);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  if (trap.caught())
+    fail("cannot read '{}': {}", file.string(), trap.message());
+  return reader->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
+{
+  const std::string extension = lower_extension(file);
+  if (extension == ".stl")
+    return run_reader<vtkSTLReader>(file);
+  if (extension == ".obj")
+    return run_reader<vtkOBJReader>(file);
+  if (extension == ".ply")
+    return run_reader<vtkPLYReader>(file);
+  if (extension == ".vtp")
+    return run_reader<vtkXMLPolyDataReader>(file);
+  if (extension == ".vtk")
+    return run_reader<vtkPolyDataReader>(file);
+  fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp or .vtk)", file.string(),
+       extension);
+}
+
+} // namespace
+
+TriangleSurface read_surface(const fs::path& file)
+{
+  if (!fs::is_regular_file(file))
+    fail("missing surface file '{}'", file.string());
+  vtkSmartPointer<vtkPolyData> raw = read_polydata(file);
+  if (raw == nullptr || raw->GetNumberOfPoints() == 0)
+    fail("'{}' holds no points (unreadable or empty)", file.string());
+
+  // Check coordinates before merging: a NaN point would poison the merge.
+  for (vtkIdType i = 0; i < raw->GetNumberOfPoints(); ++i) {
+    double p[3];
+    raw->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      fail("'{}': vertex {} has a non-finite coordinate ({}, {}, {})", file.string(), i, p[0],
+           p[1], p[2]);
+  }
+
+  auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
+  triangles->SetInputData(raw);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  auto clean = vtkSmartPointer<vtkCleanPolyData>::New();
+  clean->SetInputConnection(triangles->GetOutputPort());
+  clean->PointMergingOn();
+  clean->SetTolerance(0.0);
+  clean->ConvertPolysToLinesOff();
+  clean->ConvertLinesToPointsOff();
+  clean->ConvertStripsToPolysOff();
+  clean->Update();
+
+  TriangleSurface surface = from_polydata(clean->GetOutput());
+  if (surface.F.rows() == 0)
+    fail("'{}' holds no triangles", file.string());
+  return surface;
+}
+
+void orient_outward(TriangleSurface& surface)
+{
+  if (signed_volume(surface) < 0.0)
+    surface.F.col(1).swap(surface.F.col(2));
+}
+
+void require_closed_manifold(const TriangleSurface& surface, const std::string& what)
+{
+  const TopologyReport report = check_topology(surface);
+  if (report.boundary_edges > 0) {
+    const Eigen::Vector3d& p = report.boundary_edge_midpoints.front();
+    fail("{} is not closed: {} boundary edges, within x {:.2f}..{:.2f}, y {:.2f}..{:.2f}, "
+         "z {:.2f}..{:.2f} mm (first at {:.2f}, {:.2f}, {:.2f})",
+         what, report.boundary_edges, report.boundary_min.x(), report.boundary_max.x(),
+         report.boundary_min.y(), report.boundary_max.y(), report.boundary_min.z(),
+         report.boundary_max.z(), p.x(), p.y(), p.z());
+  }
+  if (report.nonmanifold_edges > 0)
+    fail("{} is not a manifold: {} edges are shared by three or more triangles", what,
+         report.nonmanifold_edges);
+  if (report.inconsistent_edges > 0)
+    fail("{} is not consistently oriented: {} edges are run the same way by both triangles",
+         what, report.inconsistent_edges);
+  const auto crossings = self_intersections(surface, 1);
+  if (!crossings.empty()) {
+    const auto [a, b] = crossings.front();
+    const Eigen::Vector3d p = surface.V.row(surface.F(a, 0));
+    fail("{} intersects itself: triangles {} and {} cross near ({:.2f}, {:.2f}, {:.2f}) mm", what,
+         a, b, p.x(), p.y(), p.z());
+  }
+}
+
+} // namespace ligsim::io

@@ -1,0 +1,24 @@
+#pragma once
+/// @brief Reading segmented surfaces: STL (ASCII and binary), OBJ, PLY, VTP and legacy VTK, mm.
+
+#include "common/mesh.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace ligsim::io {
+
+/// Reads a triangle surface. Polygons are triangulated, coincident points merged, unused points
+/// dropped. Throws InputError naming the file on: a missing file, an unknown extension, a file
+/// with no triangles, a non-finite coordinate (with the vertex index).
+TriangleSurface read_surface(const std::filesystem::path& file);
+
+/// Throws InputError unless `surface` is a closed, consistently oriented 2-manifold without
+/// self-intersections; the message gives the count and the location of the defects.
+/// `what` names the surface in the message ("ligament surface 'mcl.stl'").
+void require_closed_manifold(const TriangleSurface& surface, const std::string& what);
+
+/// Flips every triangle if the enclosed volume is negative, so normals face outward.
+void orient_outward(TriangleSurface& surface);
+
+} // namespace ligsim::io

@@ -1,0 +1,211 @@
+#include "stages/io/vtk_convert.hpp"
+
+#include "common/error.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellType.h>
+#include <vtkDataArray.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkIdList.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <cmath>
+
+namespace ligsim::io {
+
+namespace {
+
+vtkSmartPointer<vtkPoints> to_vtk_points(const Points& V)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(V.rows());
+  for (Eigen::Index i = 0; i < V.rows(); ++i)
+    points->SetPoint(i, V(i, 0), V(i, 1), V(i, 2));
+  return points;
+}
+
+Points from_vtk_points(vtkPoints* points)
+{
+  Points V(points ? points->GetNumberOfPoints() : 0, 3);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    double p[3];
+    points->GetPoint(i, p);
+    V.row(i) << p[0], p[1], p[2];
+  }
+  return V;
+}
+
+template <class T>
+struct VtkArrayFor;
+template <>
+struct VtkArrayFor<float> {
+  using type = vtkFloatArray;
+};
+template <>
+struct VtkArrayFor<std::uint8_t> {
+  using type = vtkUnsignedCharArray;
+};
+
+} // namespace
+
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleSurface& surface)
+{
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  for (Eigen::Index f = 0; f < surface.F.rows(); ++f) {
+    const vtkIdType ids[3] = {surface.F(f, 0), surface.F(f, 1), surface.F(f, 2)};
+    polys->InsertNextCell(3, ids);
+  }
+  auto polydata = vtkSmartPointer<vtkPolyData>::New();
+  polydata->SetPoints(to_vtk_points(surface.V));
+  polydata->SetPolys(polys);
+  return polydata;
+}
+
+TriangleSurface from_polydata(vtkPolyData* polydata)
+{
+  TriangleSurface surface;
+  surface.V = from_vtk_points(polydata->GetPoints());
+  vtkCellArray* polys = polydata->GetPolys();
+  surface.F.resize(polys ? polys->GetNumberOfCells() : 0, 3);
+  if (!polys)
+    return surface;
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  Eigen::Index f = 0;
+  for (polys->InitTraversal(); polys->GetNextCell(ids);) {
+    if (ids->GetNumberOfIds() != 3)
+      fail("polygon {} has {} vertices, expected a triangle", f, ids->GetNumberOfIds());
+    surface.F.row(f++) << static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+      static_cast<int>(ids->GetId(2));
+  }
+  return surface;
+}
+
+vtkSmartPointer<vtkPolyData> polyline_to_polydata(const Points& points)
+{
+  auto line = vtkSmartPointer<vtkCellArray>::New();
+  line->InsertNextCell(static_cast<int>(points.rows()));
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    line->InsertCellPoint(i);
+  auto polydata = vtkSmartPointer<vtkPolyData>::New();
+  polydata->SetPoints(to_vtk_points(points));
+  polydata->SetLines(line);
+  return polydata;
+}
+
+Points points_of(vtkPolyData* polydata) { return from_vtk_points(polydata->GetPoints()); }
+
+template <class T>
+vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(grid.dims.x(), grid.dims.y(), grid.dims.z());
+  image->SetOrigin(grid.origin.x(), grid.origin.y(), grid.origin.z());
+  image->SetSpacing(grid.spacing, grid.spacing, grid.spacing);
+  auto array = vtkSmartPointer<typename VtkArrayFor<T>::type>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfValues(static_cast<vtkIdType>(grid.values.size()));
+  for (std::size_t i = 0; i < grid.values.size(); ++i)
+    array->SetValue(static_cast<vtkIdType>(i), grid.values[i]);
+  image->GetPointData()->AddArray(array);
+  image->GetPointData()->SetActiveScalars(name.c_str());
+  return image;
+}
+
+template <class T>
+Grid<T> from_image(vtkImageData* image, const std::string& name)
+{
+  vtkDataArray* array = image->GetPointData()->GetArray(name.c_str());
+  if (array == nullptr || array->GetNumberOfComponents() != 1)
+    fail("image has no scalar array '{}'", name);
+  const double* spacing = image->GetSpacing();
+  if (std::abs(spacing[0] - spacing[1]) > 1e-9 * spacing[0] ||
+      std::abs(spacing[0] - spacing[2]) > 1e-9 * spacing[0])
+    fail("image '{}' has anisotropic spacing {} x {} x {}", name, spacing[0], spacing[1],
+         spacing[2]);
+  int dims[3];
+  image->GetDimensions(dims);
+  const double* origin = image->GetOrigin();
+  Grid<T> grid({dims[0], dims[1], dims[2]}, {origin[0], origin[1], origin[2]}, spacing[0]);
+  for (std::size_t i = 0; i < grid.values.size(); ++i)
+    grid.values[i] = static_cast<T>(array->GetTuple1(static_cast<vtkIdType>(i)));
+  return grid;
+}
+
+template vtkSmartPointer<vtkImageData> to_image(const Grid<float>&, const std::string&);
+template vtkSmartPointer<vtkImageData> to_image(const Grid<std::uint8_t>&, const std::string&);
+template Grid<float> from_image(vtkImageData*, const std::string&);
+template Grid<std::uint8_t> from_image(vtkImageData*, const std::string&);
+
+vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(to_vtk_points(mesh.V));
+  grid->Allocate(mesh.T.rows());
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+    const vtkIdType ids[4] = {mesh.T(t, 0), mesh.T(t, 1), mesh.T(t, 2), mesh.T(t, 3)};
+    grid->InsertNextCell(VTK_TETRA, 4, ids);
+  }
+  return grid;
+}
+
+TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid)
+{
+  TetMesh mesh;
+  mesh.V = from_vtk_points(grid->GetPoints());
+  mesh.T.resize(grid->GetNumberOfCells(), 4);
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
+    if (grid->GetCellType(c) != VTK_TETRA)
+      fail("cell {} is not a linear tetrahedron (VTK type {})", c, grid->GetCellType(c));
+    grid->GetCellPoints(c, ids);
+    for (int k = 0; k < 4; ++k)
+      mesh.T(c, k) = static_cast<int>(ids->GetId(k));
+  }
+  return mesh;
+}
+
+void add_array(vtkDataSetAttributes* attributes, const std::string& name,
+               const Eigen::Ref<const Eigen::MatrixXd>& values)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfComponents(static_cast<int>(values.cols()));
+  array->SetNumberOfTuples(values.rows());
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (Eigen::Index c = 0; c < values.cols(); ++c)
+      array->SetComponent(i, static_cast<int>(c), values(i, c));
+  attributes->AddArray(array);
+}
+
+void add_flags(vtkDataSetAttributes* attributes, const std::string& name,
+               const std::vector<bool>& flags)
+{
+  auto array = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfValues(static_cast<vtkIdType>(flags.size()));
+  for (std::size_t i = 0; i < flags.size(); ++i)
+    array->SetValue(static_cast<vtkIdType>(i), flags[i] ? 1 : 0);
+  attributes->AddArray(array);
+}
+
+Eigen::MatrixXd get_array(vtkDataSetAttributes* attributes, const std::string& name)
+{
+  vtkDataArray* array = attributes->GetArray(name.c_str());
+  if (array == nullptr)
+    fail("missing data array '{}'", name);
+  Eigen::MatrixXd values(array->GetNumberOfTuples(), array->GetNumberOfComponents());
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (Eigen::Index c = 0; c < values.cols(); ++c)
+      values(i, c) = array->GetComponent(i, static_cast<int>(c));
+  return values;
+}
+
+} // namespace ligsim::io

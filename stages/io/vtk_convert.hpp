@@ -1,0 +1,49 @@
+#pragma once
+/// @brief Conversions between the stages' in-memory data and VTK data sets.
+
+#include "common/mesh.hpp"
+#include "stages/geometry/grid.hpp"
+
+#include <vtkSmartPointer.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+class vtkDataSetAttributes;
+class vtkImageData;
+class vtkPolyData;
+class vtkUnstructuredGrid;
+
+namespace ligsim::io {
+
+vtkSmartPointer<vtkPolyData> to_polydata(const TriangleSurface& surface);
+/// Triangles only; other cells are ignored. Throws InputError on a non-triangle polygon.
+TriangleSurface from_polydata(vtkPolyData* polydata);
+
+/// A polyline (one line cell through all points, in order).
+vtkSmartPointer<vtkPolyData> polyline_to_polydata(const Points& points);
+Points points_of(vtkPolyData* polydata);
+
+/// A grid as image data with one point-data array named `name`.
+template <class T>
+vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name);
+/// The array `name` of an image; throws InputError if it is missing or the image is not isotropic.
+template <class T>
+Grid<T> from_image(vtkImageData* image, const std::string& name);
+
+vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh);
+/// Tetrahedra only; throws InputError if another cell type is present.
+TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid);
+
+/// Adds a #rows x columns double array (vectors, scalars) to point or cell data.
+void add_array(vtkDataSetAttributes* attributes, const std::string& name,
+               const Eigen::Ref<const Eigen::MatrixXd>& values);
+/// Adds a 0/1 unsigned char array.
+void add_flags(vtkDataSetAttributes* attributes, const std::string& name,
+               const std::vector<bool>& flags);
+/// Reads an array back as a #tuples x components matrix; throws InputError naming it if absent.
+Eigen::MatrixXd get_array(vtkDataSetAttributes* attributes, const std::string& name);
+
+} // namespace ligsim::io

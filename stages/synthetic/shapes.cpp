@@ -1,0 +1,167 @@
+#include "stages/synthetic/shapes.hpp"
+
+#include "stages/geometry/surface_topology.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <vector>
+
+namespace ligsim::synthetic {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Sweeps a closed convex 2-D section (counter-clockwise, in the (normal, binormal) plane)
+/// along `axis` with `rings` rings, and closes both ends with fans.
+TriangleSurface sweep(const Axis& axis, const Eigen::Vector3d& binormal_hint,
+                      const std::vector<Eigen::Vector2d>& section, int rings)
+{
+  const int n = static_cast<int>(section.size());
+  TriangleSurface surface;
+  surface.V.resize(rings * n + 2, 3);
+  for (int r = 0; r < rings; ++r) {
+    const double u = static_cast<double>(r) / (rings - 1);
+    const Eigen::Vector3d t = axis.tangent(u);
+    const Eigen::Vector3d b = (binormal_hint - binormal_hint.dot(t) * t).normalized();
+    const Eigen::Vector3d nrm = b.cross(t);
+    for (int k = 0; k < n; ++k)
+      surface.V.row(r * n + k) = axis.point(u) + section[k].x() * nrm + section[k].y() * b;
+  }
+  const int start_centre = rings * n, end_centre = rings * n + 1;
+  surface.V.row(start_centre) = axis.point(0.0);
+  surface.V.row(end_centre) = axis.point(1.0);
+
+  std::vector<Eigen::Vector3i> faces;
+  for (int r = 0; r + 1 < rings; ++r)
+    for (int k = 0; k < n; ++k) {
+      const int a = r * n + k, b = r * n + (k + 1) % n;
+      const int c = a + n, d = b + n;
+      faces.emplace_back(a, b, d);
+      faces.emplace_back(a, d, c);
+    }
+  for (int k = 0; k < n; ++k) {
+    faces.emplace_back(start_centre, (k + 1) % n, k);
+    faces.emplace_back(end_centre, (rings - 1) * n + k, (rings - 1) * n + (k + 1) % n);
+  }
+  surface.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    surface.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  if (signed_volume(surface) < 0.0)
+    surface.F.col(1).swap(surface.F.col(2));
+  return surface;
+}
+
+std::vector<Eigen::Vector2d> circle(double radius, int segments)
+{
+  std::vector<Eigen::Vector2d> points;
+  for (int k = 0; k < segments; ++k) {
+    const double phi = 2.0 * kPi * k / segments;
+    points.emplace_back(radius * std::cos(phi), radius * std::sin(phi));
+  }
+  return points;
+}
+
+/// A rectangle with rounded corners, counter-clockwise, centred at the origin.
+std::vector<Eigen::Vector2d> rounded_rectangle(double width, double height, double corner,
+                                               int corner_segments)
+{
+  const Eigen::Vector2d half(width / 2 - corner, height / 2 - corner);
+  const Eigen::Vector2d centres[4] = {
+    {half.x(), half.y()}, {-half.x(), half.y()}, {-half.x(), -half.y()}, {half.x(), -half.y()}};
+  std::vector<Eigen::Vector2d> points;
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k <= corner_segments; ++k) {
+      const double phi = kPi / 2 * (c + static_cast<double>(k) / corner_segments);
+      points.push_back(centres[c] + corner * Eigen::Vector2d(std::cos(phi), std::sin(phi)));
+    }
+  return points;
+}
+
+int rings_for(double length, double step) { return std::max(2, static_cast<int>(std::ceil(length / step)) + 1); }
+
+} // namespace
+
+Shape cylinder(double radius_mm, double length_mm, int segments)
+{
+  Shape shape;
+  shape.axis.length_mm = length_mm;
+  shape.axis.point = [length_mm](double u) { return Eigen::Vector3d(0, 0, u * length_mm); };
+  shape.axis.tangent = [](double) { return Eigen::Vector3d(0, 0, 1); };
+  const double step = 2 * kPi * radius_mm / segments * 2;
+  shape.surface = sweep(shape.axis, Eigen::Vector3d::UnitY(), circle(radius_mm, segments),
+                        rings_for(length_mm, step));
+  return shape;
+}
+
+Shape torus_tube(double bend_radius_mm, double tube_radius_mm, double angle_deg, int segments)
+{
+  Shape shape;
+  const double span = angle_deg * kPi / 180.0;
+  shape.axis.length_mm = bend_radius_mm * span;
+  shape.axis.point = [=](double u) {
+    return Eigen::Vector3d(bend_radius_mm * std::cos(u * span), bend_radius_mm * std::sin(u * span), 0);
+  };
+  shape.axis.tangent = [=](double u) {
+    return Eigen::Vector3d(-std::sin(u * span), std::cos(u * span), 0);
+  };
+  const double step = 2 * kPi * tube_radius_mm / segments * 2;
+  shape.surface = sweep(shape.axis, Eigen::Vector3d::UnitZ(), circle(tube_radius_mm, segments),
+                        rings_for(shape.axis.length_mm, step));
+  return shape;
+}
+
+Shape ligament_band(double length_mm, double width_mm, double thickness_mm)
+{
+  Shape shape;
+  // A circular arc in the xz-plane with a sagitta of 8 % of the length: bowed like an MCL
+  // wrapping the medial condyle.
+  const double sagitta = 0.08 * length_mm;
+  const double bend = (length_mm * length_mm / 4 + sagitta * sagitta) / (2 * sagitta);
+  const double half_angle = std::asin(length_mm / 2 / bend);
+  const Eigen::Vector3d centre(-(bend - sagitta), 0, length_mm / 2);
+  shape.axis.length_mm = 2 * half_angle * bend;
+  shape.axis.point = [=](double u) {
+    const double phi = -half_angle + 2 * half_angle * u;
+    return Eigen::Vector3d(centre.x() + bend * std::cos(phi), 0, centre.z() + bend * std::sin(phi));
+  };
+  shape.axis.tangent = [=](double u) {
+    const double phi = -half_angle + 2 * half_angle * u;
+    return Eigen::Vector3d(-std::sin(phi), 0, std::cos(phi));
+  };
+  // Section: thickness along x (the bow's normal), width along y.
+  auto section = rounded_rectangle(thickness_mm, width_mm, 0.4 * thickness_mm, 6);
+  const double step = std::min(1.0, thickness_mm / 3);
+  shape.surface =
+    sweep(shape.axis, Eigen::Vector3d::UnitY(), section, rings_for(shape.axis.length_mm, step));
+
+  // Bone proxies: the femur caps the proximal end (touching it); the tibia runs beside the
+  // distal quarter of the band on its inner (-x) side, 0.3 mm away.
+  const Eigen::Vector3d top = shape.axis.point(1.0);
+  shape.femur = box(top + Eigen::Vector3d(-15, -20, 0.2), top + Eigen::Vector3d(15, 20, 30));
+  const Eigen::Vector3d low = shape.axis.point(0.0);
+  const double inner_x = low.x() - thickness_mm / 2 - 0.3;
+  shape.tibia = box(Eigen::Vector3d(inner_x - 30, -20, low.z() - 30),
+                    Eigen::Vector3d(inner_x, 20, low.z() + 0.25 * length_mm));
+  return shape;
+}
+
+TriangleSurface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+{
+  TriangleSurface surface;
+  surface.V.resize(8, 3);
+  for (int i = 0; i < 8; ++i)
+    surface.V.row(i) << ((i & 1) ? hi.x() : lo.x()), ((i & 2) ? hi.y() : lo.y()),
+      ((i & 4) ? hi.z() : lo.z());
+  surface.F.resize(12, 3);
+  surface.F << 0, 2, 1, 1, 2, 3, // z = lo
+    4, 5, 6, 5, 7, 6,            // z = hi
+    0, 1, 4, 1, 5, 4,            // y = lo
+    2, 6, 3, 3, 6, 7,            // y = hi
+    0, 4, 2, 2, 4, 6,            // x = lo
+    1, 3, 5, 3, 7, 5;            // x = hi
+  return surface;
+}
+
+} // namespace ligsim::synthetic
