@@ -1,0 +1,75 @@
+#include "stages/tetmesh/tetmesh.hpp"
+
+#include "common/error.hpp"
+#include "stages/tetmesh/cgal_mesher.hpp"
+#include "stages/tetmesh/surface_check.hpp"
+#include "stages/tetmesh/tet_geometry.hpp"
+
+#include <cmath>
+
+namespace ligsim::tetmesh {
+namespace {
+
+void check_parameters(const Parameters& p)
+{
+  // Mesh_3 guarantees termination for facet angles up to 30 degrees and radius-edge
+  // ratios from 2 up (smaller values may refine forever).
+  if (!(p.facet_angle_deg > 0 && p.facet_angle_deg <= 30))
+    fail("tetmesh: facet_angle_deg must be in (0, 30] degrees, got {}", p.facet_angle_deg);
+  if (!(p.radius_edge_ratio >= 2))
+    fail("tetmesh: radius_edge_ratio must be at least 2, got {}", p.radius_edge_ratio);
+  for (const auto& [name, value] :
+       {std::pair{"cell_size_mm", p.cell_size_mm}, std::pair{"facet_size_mm", p.facet_size_mm},
+        std::pair{"facet_distance_mm", p.facet_distance_mm}})
+    if (!std::isfinite(value))
+      fail("tetmesh: {} must be finite, got {}", name, value);
+  if (p.seed < 0)
+    fail("tetmesh: seed must be non-negative, got {}", p.seed);
+}
+
+void check_orientation(const TetMesh& mesh)
+{
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+    const double volume = signed_volume(mesh.V.row(mesh.T(t, 0)), mesh.V.row(mesh.T(t, 1)),
+                                        mesh.V.row(mesh.T(t, 2)), mesh.V.row(mesh.T(t, 3)));
+    if (!(volume > 0))
+      fail<SolverError>("tetmesh: CGAL produced tet {} with volume {} mm^3 (not positive)", t,
+                        volume);
+  }
+}
+
+} // namespace
+
+Parameters default_sizes(const TriangleSurface& surface, const Parameters& parameters)
+{
+  Parameters resolved = parameters;
+  const double area = surface_area_mm2(surface);
+  const double thickness = 2.0 * std::abs(signed_enclosed_volume_mm3(surface)) / area;
+  if (!(thickness > 0))
+    fail("tetmesh: the surface encloses no volume (area {} mm^2)", area);
+  if (resolved.cell_size_mm <= 0)
+    resolved.cell_size_mm = thickness / 2;
+  if (resolved.facet_size_mm <= 0)
+    resolved.facet_size_mm = thickness / 2;
+  if (resolved.facet_distance_mm <= 0)
+    resolved.facet_distance_mm = thickness / 20;
+  return resolved;
+}
+
+Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters)
+{
+  check_parameters(parameters);
+  check_closed_surface(surface);
+  Result result;
+  result.used = default_sizes(surface, parameters);
+  result.mesh = mesh_with_cgal(surface, result.used);
+  if (result.mesh.T.rows() == 0)
+    fail("tetmesh: Mesh_3 produced no tetrahedra (cell size {} mm, facet size {} mm, facet "
+         "distance {} mm): the sizes may be far too large for the surface",
+         result.used.cell_size_mm, result.used.facet_size_mm, result.used.facet_distance_mm);
+  check_orientation(result.mesh);
+  result.quality = measure_quality(result.mesh, surface);
+  return result;
+}
+
+} // namespace ligsim::tetmesh

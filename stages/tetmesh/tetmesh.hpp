@@ -1,0 +1,67 @@
+#pragma once
+/// @brief Stage 5: tetrahedral mesh of a closed ligament surface with CGAL Mesh_3, and its quality.
+///
+/// Default sizes (any size parameter <= 0) come from the surface's characteristic thickness
+/// h = 2 V / A (enclosed volume V, area A): for a thin band h is its thickness, for a long
+/// round cylinder h is its radius. Then cell_size = facet_size = h / 2 and
+/// facet_distance = h / 20 (see default_sizes()).
+///
+/// Steps: Mesh_3 Delaunay refinement; then, if asked, rounds of perturbation each followed by
+/// a refinement (perturbation moves surface vertices and can break the facet criteria) until a
+/// refinement adds no vertex; then, if asked, sliver exudation (weights only: vertices and
+/// surface facets stay). So the refinement criteria hold on the output surface facets, and
+/// perturbation and exudation raise the min dihedral angle.
+
+#include "common/mesh.hpp"
+
+namespace ligsim::tetmesh {
+
+struct Parameters {
+  double cell_size_mm = 0;  ///< max tet circumradius; <= 0: h / 2
+  double facet_size_mm = 0; ///< max radius of a boundary facet's surface Delaunay ball; <= 0: h / 2
+  double facet_distance_mm = 0; ///< max distance facet circumcentre to input surface; <= 0: h / 20
+  double facet_angle_deg = 25;  ///< min angle of a boundary facet
+  double radius_edge_ratio = 2; ///< max tet circumradius / shortest edge during refinement
+  bool exude_slivers = true;    ///< CGAL::exude_mesh_3 (sliver exudation by vertex weights)
+  bool perturb = true;          ///< CGAL::perturb_mesh_3 (raises the min dihedral angle)
+  int seed = 0;                 ///< seed of CGAL's random generator: same seed, same mesh
+};
+
+struct Quality {
+  int tets = 0;
+  int nodes = 0;
+  double min_dihedral_deg = 0; ///< over all six dihedral angles of every tet
+  double max_dihedral_deg = 0;
+  double worst_radius_edge_ratio = 0; ///< max circumradius / shortest edge (regular tet: 0.612)
+  double min_volume_mm3 = 0;          ///< signed: negative means an inverted tet
+  double total_volume_mm3 = 0;
+  double surface_volume_mm3 = 0; ///< volume enclosed by the input surface, for comparison
+  double max_surface_distance_mm =
+      0; ///< from the tet mesh's boundary vertices to the input surface
+  /// From the boundary facets' centroids to the input surface: how far the facets themselves
+  /// depart from it (not bounded by facet_distance_mm; 1.4x it on the MCL).
+  double max_facet_centroid_distance_mm = 0;
+  /// From the boundary facets' circumcentres to the input surface: at most facet_distance_mm,
+  /// since Mesh_3 bounds the distance from each circumcentre to a point of the surface.
+  double max_facet_circumcentre_distance_mm = 0;
+};
+
+struct Result {
+  TetMesh mesh;
+  Quality quality;
+  Parameters used; ///< with the defaults resolved
+};
+
+/// Meshes the volume enclosed by `surface` (closed, edge-manifold, consistently oriented;
+/// several closed components are allowed). Every output tet is positively oriented and every
+/// output vertex belongs to a tet. Throws InputError on an empty or open surface, bad indices,
+/// non-finite coordinates, invalid parameters, or when no tet is produced.
+Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters);
+
+/// Quality figures of `mesh`; distances are measured to `surface`.
+Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface);
+
+/// `parameters` with every size <= 0 replaced by the rule in this header's comment.
+Parameters default_sizes(const TriangleSurface& surface, const Parameters& parameters);
+
+} // namespace ligsim::tetmesh
