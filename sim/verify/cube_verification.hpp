@@ -35,8 +35,11 @@ struct CubeCaseResult {
   double volume_change_pct = 0.0;
   double avg_top_uz_mm = 0.0;
   double wall_s = 0.0; ///< set-up and solve, excluding file reading
+  double cpu_s = 0.0;  ///< process CPU time of the same (all threads)
   double febio_wall_s = 0.0;
   int newton_iterations = 0;
+  int factorizations = 0;
+  int cg_iterations = 0;
   int load_steps = 0;
   int projected_elements = 0;
 };
