@@ -1,6 +1,6 @@
 #include "common/error.hpp"
-#include "stages/tetmesh/surface_check.hpp"
-#include "stages/tetmesh/surface_distance.hpp"
+#include "stages/geometry/surface_query.hpp"
+#include "stages/geometry/surface_topology.hpp"
 #include "stages/tetmesh/tet_geometry.hpp"
 #include "stages/tetmesh/tetmesh.hpp"
 
@@ -41,7 +41,7 @@ Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface)
   Quality quality;
   quality.tets = static_cast<int>(mesh.T.rows());
   quality.nodes = static_cast<int>(mesh.V.rows());
-  quality.surface_volume_mm3 = std::abs(signed_enclosed_volume_mm3(surface));
+  quality.surface_volume_mm3 = std::abs(ligsim::signed_volume(surface));
   if (mesh.T.rows() == 0)
     fail("cannot measure the quality of a mesh without tetrahedra");
 
@@ -51,7 +51,7 @@ Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface)
     std::array<Eigen::Vector3d, 4> v;
     for (int k = 0; k < 4; ++k)
       v[k] = mesh.V.row(mesh.T(t, k));
-    const double volume = signed_volume(v[0], v[1], v[2], v[3]);
+    const double volume = signed_tet_volume(v[0], v[1], v[2], v[3]);
     quality.min_volume_mm3 = std::min(quality.min_volume_mm3, volume);
     quality.total_volume_mm3 += volume;
     for (const double angle : dihedral_angles_deg(v)) {
@@ -82,7 +82,10 @@ Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface)
     queries.row(vertex_count + f) = (a + b + c).transpose() / 3.0;
     queries.row(vertex_count + face_count + f) = triangle_circumcentre(a, b, c).transpose();
   }
-  const Eigen::VectorXd distances = distances_to_surface(queries, surface);
+  const SurfaceQuery query(surface);
+  Eigen::VectorXd distances(queries.rows());
+  for (Eigen::Index q = 0; q < queries.rows(); ++q)
+    distances(q) = query.distance(queries.row(q).transpose());
   quality.max_surface_distance_mm = distances.head(vertex_count).maxCoeff();
   quality.max_facet_centroid_distance_mm = distances.segment(vertex_count, face_count).maxCoeff();
   quality.max_facet_circumcentre_distance_mm = distances.tail(face_count).maxCoeff();

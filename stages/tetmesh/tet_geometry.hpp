@@ -13,8 +13,8 @@ namespace ligsim::tetmesh {
 inline constexpr double degrees_per_radian = 57.295779513082320876798;
 
 /// (v1 - v0) . ((v2 - v0) x (v3 - v0)) / 6, mm^3: positive for a positively oriented tet.
-inline double signed_volume(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
-                            const Eigen::Vector3d& v2, const Eigen::Vector3d& v3)
+inline double signed_tet_volume(const Eigen::Vector3d& v0, const Eigen::Vector3d& v1,
+                                const Eigen::Vector3d& v2, const Eigen::Vector3d& v3)
 {
   return (v1 - v0).dot((v2 - v0).cross(v3 - v0)) / 6.0;
 }

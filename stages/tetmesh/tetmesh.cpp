@@ -1,8 +1,9 @@
 #include "stages/tetmesh/tetmesh.hpp"
 
 #include "common/error.hpp"
+#include "stages/geometry/surface_topology.hpp"
+#include "stages/io/surface_reader.hpp"
 #include "stages/tetmesh/cgal_mesher.hpp"
-#include "stages/tetmesh/surface_check.hpp"
 #include "stages/tetmesh/tet_geometry.hpp"
 
 #include <cmath>
@@ -27,11 +28,29 @@ void check_parameters(const Parameters& p)
     fail("tetmesh: seed must be non-negative, got {}", p.seed);
 }
 
+/// Indices and coordinates first (the topology check reads them), then closed and manifold.
+void check_surface(const TriangleSurface& surface)
+{
+  if (surface.F.rows() == 0)
+    fail("tetmesh: the surface is empty ({} vertices, no triangles): nothing to mesh",
+         surface.V.rows());
+  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+    if (!surface.V.row(v).allFinite())
+      fail("tetmesh: surface vertex {} has a non-finite coordinate", v);
+  const auto vertex_count = static_cast<int>(surface.V.rows());
+  for (Eigen::Index f = 0; f < surface.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (surface.F(f, k) < 0 || surface.F(f, k) >= vertex_count)
+        fail("tetmesh: surface triangle {} has vertex index {} outside 0..{}", f, surface.F(f, k),
+             vertex_count - 1);
+  io::require_closed_manifold(surface, "tetmesh: the surface");
+}
+
 void check_orientation(const TetMesh& mesh)
 {
   for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
-    const double volume = signed_volume(mesh.V.row(mesh.T(t, 0)), mesh.V.row(mesh.T(t, 1)),
-                                        mesh.V.row(mesh.T(t, 2)), mesh.V.row(mesh.T(t, 3)));
+    const double volume = signed_tet_volume(mesh.V.row(mesh.T(t, 0)), mesh.V.row(mesh.T(t, 1)),
+                                            mesh.V.row(mesh.T(t, 2)), mesh.V.row(mesh.T(t, 3)));
     if (!(volume > 0))
       fail<SolverError>("tetmesh: CGAL produced tet {} with volume {} mm^3 (not positive)", t,
                         volume);
@@ -43,8 +62,8 @@ void check_orientation(const TetMesh& mesh)
 Parameters default_sizes(const TriangleSurface& surface, const Parameters& parameters)
 {
   Parameters resolved = parameters;
-  const double area = surface_area_mm2(surface);
-  const double thickness = 2.0 * std::abs(signed_enclosed_volume_mm3(surface)) / area;
+  const double area = ligsim::surface_area(surface);
+  const double thickness = 2.0 * std::abs(ligsim::signed_volume(surface)) / area;
   if (!(thickness > 0))
     fail("tetmesh: the surface encloses no volume (area {} mm^2)", area);
   if (resolved.cell_size_mm <= 0)
@@ -59,7 +78,7 @@ Parameters default_sizes(const TriangleSurface& surface, const Parameters& param
 Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters)
 {
   check_parameters(parameters);
-  check_closed_surface(surface);
+  check_surface(surface);
   Result result;
   result.used = default_sizes(surface, parameters);
   result.mesh = mesh_with_cgal(surface, result.used);

@@ -1,14 +1,7 @@
 #include "tests/stages/tetmesh/test_surfaces.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkIdList.h>
-#include <vtkPolyData.h>
-#include <vtkSTLReader.h>
-#include <vtkSmartPointer.h>
-
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <vector>
 
 namespace ligsim::tetmesh::test {
@@ -61,35 +54,6 @@ TriangleSurface capsule(double radius_mm, double length_mm, int segments)
   surface.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
   for (std::size_t f = 0; f < faces.size(); ++f)
     surface.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
-  return surface;
-}
-
-TriangleSurface read_stl(const std::filesystem::path& file)
-{
-  if (!std::filesystem::exists(file))
-    throw std::runtime_error("test data missing: " + file.string());
-  auto reader = vtkSmartPointer<vtkSTLReader>::New();
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
-
-  TriangleSurface surface;
-  surface.V.resize(poly->GetNumberOfPoints(), 3);
-  for (vtkIdType p = 0; p < poly->GetNumberOfPoints(); ++p) {
-    double x[3];
-    poly->GetPoint(p, x);
-    surface.V.row(p) << x[0], x[1], x[2];
-  }
-  surface.F.resize(poly->GetNumberOfPolys(), 3);
-  auto cell = vtkSmartPointer<vtkIdList>::New();
-  vtkCellArray* polys = poly->GetPolys();
-  polys->InitTraversal();
-  for (Eigen::Index f = 0; polys->GetNextCell(cell); ++f) {
-    if (cell->GetNumberOfIds() != 3)
-      throw std::runtime_error("STL cell is not a triangle");
-    surface.F.row(f) << static_cast<int>(cell->GetId(0)), static_cast<int>(cell->GetId(1)),
-        static_cast<int>(cell->GetId(2));
-  }
   return surface;
 }
 
