@@ -36,8 +36,8 @@ struct Quality {
   double min_volume_mm3 = 0;          ///< signed: negative means an inverted tet
   double total_volume_mm3 = 0;
   double surface_volume_mm3 = 0; ///< volume enclosed by the input surface, for comparison
-  double max_surface_distance_mm =
-      0; ///< from the tet mesh's boundary vertices to the input surface
+  /// From the tet mesh's boundary vertices to the input surface (Mesh_3 puts them on it).
+  double max_surface_distance_mm = 0;
   /// From the boundary facets' centroids to the input surface: how far the facets themselves
   /// depart from it (not bounded by facet_distance_mm; 1.4x it on the MCL).
   double max_facet_centroid_distance_mm = 0;
@@ -52,10 +52,12 @@ struct Result {
   Parameters used; ///< with the defaults resolved
 };
 
-/// Meshes the volume enclosed by `surface` (closed, edge-manifold, consistently oriented;
-/// several closed components are allowed). Every output tet is positively oriented and every
-/// output vertex belongs to a tet. Throws InputError on an empty or open surface, bad indices,
-/// non-finite coordinates, invalid parameters, or when no tet is produced.
+/// Meshes the volume enclosed by `surface` (closed, manifold, consistently oriented, free of
+/// self-intersections; several disjoint closed components are allowed). Every output tet is
+/// positively oriented and every output vertex belongs to a tet; the same input, parameters and
+/// seed give the same mesh. Throws InputError on an empty, open, non-manifold or
+/// self-intersecting surface, bad indices, non-finite coordinates, invalid parameters, or when
+/// no tet is produced. Sizes far below the surface's size can take very long (no guard).
 Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters);
 
 /// Quality figures of `mesh`; distances are measured to `surface`.
