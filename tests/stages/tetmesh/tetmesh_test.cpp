@@ -132,7 +132,7 @@ TEST(Tetmesh, DefaultSizesFollowTheThicknessRule)
   EXPECT_EQ(default_sizes(surface, partly).facet_size_mm, 0.8); // given sizes are kept
 }
 
-TEST(Tetmesh, SameSeedSameMesh)
+TEST(Tetmesh, SameSeedSameMeshOtherSeedOtherMesh)
 {
   const TriangleSurface surface = test::capsule(capsule_radius, capsule_length, 48);
   const Result first = make_tet_mesh(surface, Parameters{});
@@ -142,6 +142,14 @@ TEST(Tetmesh, SameSeedSameMesh)
   EXPECT_TRUE(first.mesh.T == second.mesh.T);
   EXPECT_TRUE(first.mesh.V == second.mesh.V);
   expect_valid_and_compact(first.mesh);
+
+  // The seed reaches CGAL: another seed places the initial surface points elsewhere.
+  Parameters reseeded;
+  reseeded.seed = 1;
+  const Result other = make_tet_mesh(surface, reseeded);
+  expect_valid_and_compact(other.mesh);
+  EXPECT_FALSE(other.mesh.V.rows() == first.mesh.V.rows() && other.mesh.V == first.mesh.V);
+  EXPECT_GE(other.quality.min_dihedral_deg, 5.0);
 }
 
 TEST(Tetmesh, PerturbationAndExudationRemoveSlivers)
