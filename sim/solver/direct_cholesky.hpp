@@ -27,6 +27,7 @@ public:
   /// curvature on a fresh factor).
   LinearSolveReport solve(const Eigen::VectorXd& b, Eigen::VectorXd& y);
 
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { m_stiffness.multiply(x, y); }
   std::size_t stored_values() const { return static_cast<std::size_t>(m_stiffness.nonzeros()); }
   int factorizations() const { return m_factorizations; }
 

@@ -24,6 +24,9 @@ public:
   /// stay zero.
   LinearSolveReport solve(const Eigen::VectorXd& b_full, Eigen::VectorXd& y_full) const;
 
+  /// y = S A S x on full-length vectors.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { apply(x, y); }
+
   std::size_t stored_values() const { return 144 * m_hessians.size(); }
 
 private:

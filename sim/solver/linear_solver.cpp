@@ -67,6 +67,23 @@ LinearSolveReport StiffnessSolver::solve(const Eigen::VectorXd& b, Eigen::Vector
   return report;
 }
 
+void StiffnessSolver::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+{
+  if (m_direct) {
+    m_direct->multiply(x, y);
+    return;
+  }
+  const auto& free_dofs = m_dofs.free_dofs();
+  Eigen::VectorXd x_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    x_full(free_dofs[f]) = x(static_cast<Eigen::Index>(f));
+  Eigen::VectorXd y_full;
+  m_pcg->multiply(x_full, y_full);
+  y.resize(x.size());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    y(static_cast<Eigen::Index>(f)) = y_full(free_dofs[f]);
+}
+
 std::size_t StiffnessSolver::stored_values() const
 {
   return m_direct ? m_direct->stored_values() : m_pcg->stored_values();

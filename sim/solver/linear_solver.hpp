@@ -57,6 +57,9 @@ public:
   /// Solves A y = b (free-DOF vectors). `y` holds the initial guess for CG.
   LinearSolveReport solve(const Eigen::VectorXd& b, Eigen::VectorXd& y);
 
+  /// y = A x with the matrix of the last prepare() (free-DOF vectors).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
   /// Structural figures: matrix non-zeros (direct) or stored element matrices (pcg).
   std::size_t stored_values() const;
 

@@ -1,0 +1,48 @@
+#pragma once
+/// @brief A simulation scene: mesh, material, fibers, node sets, boundary conditions, loads,
+/// solver and outputs, read from a TOML file (format in README.md, section "Simulation").
+
+#include "common/mesh.hpp"
+#include "sim/material/material_parameters.hpp"
+#include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+#include "sim/solver/implicit_euler.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+enum class SceneKind { quasi_static, dynamic };
+
+struct OutputSettings {
+  int every = 1;   ///< write a VTU every N load steps or frames (the last one always)
+  bool vtu = true; ///< false: summary.json and reactions.csv only
+};
+
+struct Scene {
+  std::filesystem::path file; ///< the scene file ("" when parsed from text)
+  std::string mesh_source;    ///< "file <path>" or the generator and its parameters
+  TetMesh mesh;
+  MaterialParameters material;
+  FiberField fibers; ///< empty without fibers
+  std::map<std::string, std::vector<int>> node_sets;
+  BoundaryConditions conditions;
+  SceneKind kind = SceneKind::quasi_static;
+  NewtonSettings newton;
+  DynamicsSettings dynamics;
+  OutputSettings output;
+};
+
+/// Reads a scene file; relative paths in it are relative to the file's folder. Throws
+/// InputError naming the file, the table and the key of the first problem.
+Scene load_scene(const std::filesystem::path& file);
+
+/// The same from TOML text; `base` resolves relative paths, `name` labels errors.
+Scene parse_scene(const std::string& text, const std::filesystem::path& base,
+                  const std::string& name);
+
+} // namespace ligsim::sim

@@ -1,0 +1,113 @@
+#include "sim/scene/scene_output.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/vtk_files.hpp"
+
+#include <fmt/format.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+namespace ligsim::sim {
+
+namespace {
+
+vtkSmartPointer<vtkDoubleArray> make_array(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+} // namespace
+
+SceneOutput::SceneOutput(const HyperelasticBody& body, std::filesystem::path directory)
+  : m_body(body)
+  , m_directory(std::move(directory))
+{
+  ensure_directory(m_directory);
+}
+
+void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
+{
+  if (!x.allFinite())
+    fail<SolverError>("step {}: the positions are not finite; nothing written", index);
+  const TetMesh& mesh = m_body.mesh();
+  const vtkIdType node_count = mesh.V.rows();
+  const vtkIdType element_count = mesh.T.rows();
+
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(node_count);
+  auto displacement = make_array("displacement", 3, node_count);
+  for (vtkIdType n = 0; n < node_count; ++n) {
+    points->SetPoint(n, x(3 * n), x(3 * n + 1), x(3 * n + 2));
+    for (int a = 0; a < 3; ++a)
+      displacement->SetComponent(n, a, x(3 * n + a) - mesh.V(n, a));
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->AddArray(displacement);
+
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->AllocateExact(element_count, 4 * element_count);
+  for (vtkIdType e = 0; e < element_count; ++e) {
+    const vtkIdType ids[4] = {mesh.T(e, 0), mesh.T(e, 1), mesh.T(e, 2), mesh.T(e, 3)};
+    cells->InsertNextCell(4, ids);
+  }
+  grid->SetCells(VTK_TETRA, cells);
+
+  auto energy = make_array("strain_energy_density", 1, element_count);
+  auto jacobian = make_array("J", 1, element_count);
+  const bool fibers = m_body.material().has_fibers();
+  vtkSmartPointer<vtkDoubleArray> stretch;
+  vtkSmartPointer<vtkDoubleArray> direction;
+  if (fibers) {
+    stretch = make_array("fiber_stretch", 1, element_count);
+    direction = make_array("fiber_direction", 3, element_count);
+  }
+  for (vtkIdType e = 0; e < element_count; ++e) {
+    const ElementMeasures measures = m_body.measures(x, e);
+    if (!std::isfinite(measures.energy_density_mpa) || !(measures.J > 0.0))
+      fail<SolverError>("step {}: element {} is inverted or has a non-finite energy (J = {:.3g}); "
+                        "nothing written",
+                        index, e, measures.J);
+    energy->SetValue(e, measures.energy_density_mpa);
+    jacobian->SetValue(e, measures.J);
+    if (fibers) {
+      stretch->SetValue(e, measures.fiber_stretch);
+      const TetCorners Q = tet_corners(mesh.T, e, x);
+      const Eigen::Vector3d deformed = (Q.transpose() * m_body.shape(e).D) * m_body.fiber(e);
+      const Eigen::Vector3d unit = deformed.normalized();
+      for (int a = 0; a < 3; ++a)
+        direction->SetComponent(e, a, unit(a));
+    }
+  }
+  grid->GetCellData()->AddArray(energy);
+  grid->GetCellData()->AddArray(jacobian);
+  if (fibers) {
+    grid->GetCellData()->AddArray(stretch);
+    grid->GetCellData()->AddArray(direction);
+  }
+  const std::string name = fmt::format("step_{:04d}.vtu", index);
+  write_vtk(grid, m_directory / name);
+  m_steps.emplace_back(time, name);
+}
+
+void SceneOutput::finish()
+{
+  if (!m_steps.empty())
+    write_pvd(m_directory / "series.pvd", m_steps);
+}
+
+} // namespace ligsim::sim

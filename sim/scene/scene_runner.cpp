@@ -1,0 +1,162 @@
+#include "sim/scene/scene_runner.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/progress.hpp"
+#include "common/resources.hpp"
+#include "sim/scene/scene_output.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+
+namespace ligsim::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Reaction force (and, for rigid motions, moment about the rotation point) of every set.
+nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen::VectorXd& x,
+                              const Eigen::VectorXd& residual, std::string& csv,
+                              const std::string& row_prefix)
+{
+  nlohmann::json reactions = nlohmann::json::object();
+  const std::vector<Eigen::Vector3d> forces = reaction_forces(conditions, residual);
+  for (std::size_t s = 0; s < forces.size(); ++s) {
+    const ConstraintSet& set = conditions.constraints[s];
+    nlohmann::json entry = {{"force_n", vector_json(forces[s])},
+                            {"magnitude_n", forces[s].norm()}};
+    if (set.rigid)
+      entry["moment_nmm"] =
+          vector_json(reaction_moment(set, residual, x, set.rigid->point_mm));
+    reactions[set.name] = entry;
+    csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", row_prefix, set.name,
+                       forces[s].x(), forces[s].y(), forces[s].z(), forces[s].norm());
+  }
+  return reactions;
+}
+
+} // namespace
+
+SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& summary)
+{
+  ensure_directory(out);
+  StageMeter setup_meter;
+  const HyperelasticBody body(scene.mesh, scene.material, scene.fibers);
+  summary.add_stage("setup", setup_meter,
+                    {{"nodes", body.node_count()},
+                     {"elements", body.element_count()},
+                     {"fibers", body.material().has_fibers()},
+                     {"rest_volume_mm3", body.rest_volume()}});
+
+  std::unique_ptr<SceneOutput> output;
+  if (scene.output.vtu)
+    output = std::make_unique<SceneOutput>(body, out);
+  std::string csv = scene.kind == SceneKind::quasi_static
+                        ? "step,load_factor,set,fx_n,fy_n,fz_n,magnitude_n\n"
+                        : "frame,time_s,set,fx_n,fy_n,fz_n,magnitude_n\n";
+  nlohmann::json entries = nlohmann::json::array();
+  SceneRunReport run;
+  StageMeter solve_meter;
+  nlohmann::json solve_figures;
+
+  if (scene.kind == SceneKind::quasi_static) {
+    StaticSolver solver(body, scene.conditions, scene.newton);
+    Eigen::VectorXd x = body.rest_positions();
+    if (output)
+      output->write_step(0, 0.0, x);
+    Progress progress("load steps", static_cast<std::size_t>(scene.newton.load_steps));
+    const StaticResult result = solver.solve(
+        x, [&](const StepReport& step, const Eigen::VectorXd& state,
+               const Eigen::VectorXd& residual) {
+          nlohmann::json entry = {{"step", step.step},
+                                  {"load_factor", step.load_factor},
+                                  {"newton_iterations", step.iterations},
+                                  {"substeps", step.substeps},
+                                  {"cutbacks", step.cutbacks},
+                                  {"relative_residual", step.relative_residual},
+                                  {"strain_energy_mj", step.strain_energy_mj},
+                                  {"min_j", step.min_j},
+                                  {"min_j_element", step.min_j_element},
+                                  {"projected_elements", step.projected_elements},
+                                  {"factorizations", step.factorizations},
+                                  {"cg_iterations", step.linear_iterations},
+                                  {"wall_s", step.wall_s}};
+          entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
+                                              fmt::format("{},{}", step.step, step.load_factor));
+          entries.push_back(entry);
+          const bool last = step.step == scene.newton.load_steps;
+          if (output && (step.step % scene.output.every == 0 || last))
+            output->write_step(step.step, step.load_factor, state);
+          progress.advance();
+        });
+    progress.finish();
+    run.success = result.converged;
+    run.failure = result.failure;
+    solve_figures = {{"converged", result.converged},
+                     {"newton_iterations", result.newton_iterations},
+                     {"cutbacks", result.cutbacks},
+                     {"projected_elements", result.projected_elements},
+                     {"factorizations", result.factorizations},
+                     {"cg_iterations", result.linear_iterations},
+                     {"linear_solver", to_string(scene.newton.linear_solver)},
+                     {"linear_solver_stored_values", solver.linear_solver_storage()}};
+  } else {
+    ImplicitEuler solver(body, scene.conditions, scene.dynamics);
+    Eigen::VectorXd x = body.rest_positions();
+    if (output)
+      output->write_step(0, 0.0, x);
+    const DynamicResult result = solver.run(
+        x, [&](const FrameReport& frame, const Eigen::VectorXd& state,
+               const Eigen::VectorXd& residual) {
+          const bool output_frame = frame.frame % scene.output.every == 0;
+          if (!output_frame)
+            return;
+          nlohmann::json entry = {{"frame", frame.frame},
+                                  {"time_s", frame.time_s},
+                                  {"load_factor", frame.load_factor},
+                                  {"relative_residual", frame.relative_residual},
+                                  {"relative_inertia", frame.relative_inertia},
+                                  {"kinetic_energy_mj", frame.kinetic_energy_mj},
+                                  {"strain_energy_mj", frame.strain_energy_mj},
+                                  {"min_j", frame.min_j},
+                                  {"min_j_element", frame.min_j_element},
+                                  {"substeps", frame.substeps},
+                                  {"cg_iterations", frame.linear_iterations},
+                                  {"factorizations", frame.factorizations},
+                                  {"wall_s", frame.wall_s}};
+          entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
+                                              fmt::format("{},{}", frame.frame, frame.time_s));
+          entries.push_back(entry);
+          if (output)
+            output->write_step(frame.frame, frame.time_s, state);
+        });
+    run.success = result.completed;
+    run.failure = result.failure;
+    // The last frame is always in the outputs.
+    if (result.frames > 0 && result.frames % scene.output.every != 0 && output)
+      output->write_step(result.frames, result.frames * scene.dynamics.time_step_s, x);
+    solve_figures = {{"completed", result.completed},
+                     {"reached_equilibrium", result.reached_equilibrium},
+                     {"frames", result.frames},
+                     {"frames_per_second", result.frames / std::max(result.wall_s, 1e-9)},
+                     {"substeps", result.substeps},
+                     {"cg_iterations", result.linear_iterations},
+                     {"factorizations", result.factorizations},
+                     {"projected_elements", result.projected_elements},
+                     {"linear_solver", to_string(scene.dynamics.linear_solver)}};
+  }
+  if (output)
+    output->finish();
+  write_text_atomically(out / "reactions.csv", csv);
+  summary.add_stage("solve", solve_meter, solve_figures);
+  summary.results()[scene.kind == SceneKind::quasi_static ? "steps" : "frames"] = entries;
+  summary.results()["success"] = run.success;
+  if (!run.success)
+    summary.results()["failure"] = run.failure;
+  return run;
+}
+
+} // namespace ligsim::sim

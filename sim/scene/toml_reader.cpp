@@ -1,0 +1,165 @@
+#include "sim/scene/toml_reader.hpp"
+
+#include "common/error.hpp"
+
+#include <cmath>
+
+namespace ligsim::sim {
+
+TomlTable::TomlTable(const toml::table& table, std::string where)
+  : m_table(&table)
+  , m_where(std::move(where))
+{
+}
+
+bool TomlTable::has(const std::string& key) const { return m_table->contains(key); }
+
+void TomlTable::fail_at(const std::string& key, const std::string& problem) const
+{
+  fail("{}: {}: {}", m_where, key, problem);
+}
+
+const toml::node& TomlTable::node(const std::string& key)
+{
+  m_read.insert(key);
+  const toml::node* found = m_table->get(key);
+  if (!found)
+    fail_at(key, "missing");
+  return *found;
+}
+
+double TomlTable::required_number(const std::string& key)
+{
+  const toml::node& value = node(key);
+  if (!value.is_number())
+    fail_at(key, "expected a number");
+  const double number = value.value<double>().value();
+  if (!std::isfinite(number))
+    fail_at(key, "expected a finite number");
+  return number;
+}
+
+double TomlTable::number(const std::string& key, double fallback)
+{
+  return has(key) ? required_number(key) : fallback;
+}
+
+int TomlTable::integer(const std::string& key, int fallback)
+{
+  if (!has(key))
+    return fallback;
+  const toml::node& value = node(key);
+  if (!value.is_integer())
+    fail_at(key, "expected an integer");
+  return static_cast<int>(value.value<std::int64_t>().value());
+}
+
+bool TomlTable::boolean(const std::string& key, bool fallback)
+{
+  if (!has(key))
+    return fallback;
+  const toml::node& value = node(key);
+  if (!value.is_boolean())
+    fail_at(key, "expected true or false");
+  return value.value<bool>().value();
+}
+
+std::string TomlTable::required_text(const std::string& key)
+{
+  const toml::node& value = node(key);
+  if (!value.is_string())
+    fail_at(key, "expected a string");
+  return value.value<std::string>().value();
+}
+
+std::string TomlTable::text(const std::string& key, const std::string& fallback)
+{
+  return has(key) ? required_text(key) : fallback;
+}
+
+Eigen::Vector3d TomlTable::required_vector3(const std::string& key)
+{
+  const toml::node& value = node(key);
+  const toml::array* array = value.as_array();
+  if (!array || array->size() != 3)
+    fail_at(key, "expected an array of 3 numbers");
+  Eigen::Vector3d result;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const toml::node& item = *array->get(i);
+    if (!item.is_number() || !std::isfinite(item.value<double>().value()))
+      fail_at(key, "expected an array of 3 finite numbers");
+    result(static_cast<Eigen::Index>(i)) = item.value<double>().value();
+  }
+  return result;
+}
+
+Eigen::Vector3d TomlTable::vector3(const std::string& key, const Eigen::Vector3d& fallback)
+{
+  return has(key) ? required_vector3(key) : fallback;
+}
+
+Eigen::Vector3i TomlTable::integer_vector3(const std::string& key)
+{
+  const std::vector<int> values = integers(key);
+  if (values.size() != 3)
+    fail_at(key, "expected an array of 3 integers");
+  return {values[0], values[1], values[2]};
+}
+
+std::vector<int> TomlTable::integers(const std::string& key)
+{
+  const toml::array* array = node(key).as_array();
+  if (!array)
+    fail_at(key, "expected an array of integers");
+  std::vector<int> values;
+  for (const toml::node& item : *array) {
+    if (!item.is_integer())
+      fail_at(key, "expected an array of integers");
+    values.push_back(static_cast<int>(item.value<std::int64_t>().value()));
+  }
+  return values;
+}
+
+std::optional<TomlTable> TomlTable::table(const std::string& key)
+{
+  if (!has(key))
+    return std::nullopt;
+  const toml::table* sub = node(key).as_table();
+  if (!sub)
+    fail_at(key, "expected a table");
+  return TomlTable(*sub, m_where + " " + key);
+}
+
+std::vector<TomlTable> TomlTable::tables(const std::string& key)
+{
+  std::vector<TomlTable> result;
+  if (!has(key))
+    return result;
+  const toml::array* array = node(key).as_array();
+  if (!array)
+    fail_at(key, "expected an array of tables ([[" + key + "]])");
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::table* sub = array->get(i)->as_table();
+    if (!sub)
+      fail_at(key, "expected an array of tables ([[" + key + "]])");
+    result.emplace_back(*sub, m_where + " [[" + key + "]] #" + std::to_string(i + 1));
+  }
+  return result;
+}
+
+std::vector<std::string> TomlTable::keys() const
+{
+  std::vector<std::string> names;
+  for (const auto& [key, value] : *m_table)
+    names.emplace_back(key.str());
+  return names;
+}
+
+void TomlTable::reject_unknown_keys() const
+{
+  for (const auto& [key, value] : *m_table)
+    if (m_read.count(std::string(key.str())) == 0)
+      fail("{}: unknown key '{}'", m_where, key.str());
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,211 @@
+#include "sim/solver/implicit_euler.hpp"
+
+#include "common/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace ligsim::sim {
+
+namespace {
+
+/// kg/m^3 to t/mm^3, the mass unit consistent with mm, N and s.
+constexpr double kg_per_m3_to_t_per_mm3 = 1e-12;
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditions& conditions,
+                             const DynamicsSettings& settings)
+  : m_body(body)
+  , m_conditions(conditions)
+  , m_settings(settings)
+  , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
+  , m_external(m_dofs.external_forces(conditions))
+  , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+{
+  if (!(settings.time_step_s > 0.0) || !std::isfinite(settings.time_step_s))
+    fail("dynamics: time_step_s must be positive, got {}", settings.time_step_s);
+  if (settings.frames < 1)
+    fail("dynamics: frames must be at least 1, got {}", settings.frames);
+  if (settings.ramp_frames < 1)
+    fail("dynamics: ramp_frames must be at least 1, got {}", settings.ramp_frames);
+  if (!(settings.density_kg_m3 > 0.0))
+    fail("dynamics: density_kg_m3 must be positive, got {}", settings.density_kg_m3);
+  if (settings.mass_damping_per_s < 0.0 || settings.stiffness_damping_s < 0.0)
+    fail("dynamics: damping coefficients must not be negative");
+  if (m_dofs.free_count() == 0)
+    fail("every degree of freedom is prescribed: nothing to solve");
+
+  const double density = settings.density_kg_m3 * kg_per_m3_to_t_per_mm3;
+  m_mass = Eigen::VectorXd::Zero(body.dof_count());
+  const Tetrahedra& T = body.mesh().T;
+  for (Eigen::Index e = 0; e < T.rows(); ++e)
+    for (int i = 0; i < 4; ++i)
+      m_mass.segment<3>(3 * T(e, i)).array() += density * body.shape(e).V0 / 4.0;
+  m_free_mass.resize(m_dofs.free_count());
+  for (int f = 0; f < m_dofs.free_count(); ++f)
+    m_free_mass(f) = m_mass(m_dofs.free_dofs()[static_cast<std::size_t>(f)]);
+
+  const Points& V = body.mesh().V;
+  const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
+}
+
+bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t,
+                         FrameReport& report)
+{
+  const auto& free_dofs = m_dofs.free_dofs();
+  const double alpha = m_settings.mass_damping_per_s;
+  const double beta = m_settings.stiffness_damping_s;
+
+  // Prescribed DOFs jump to their targets; the solve sees them as already moved.
+  m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
+  Eigen::VectorXd gradient;
+  const BodyEnergy energy = m_body.energy_gradient(x, gradient);
+  if (!std::isfinite(energy.energy)) {
+    m_failure = fmt::format("moving the prescribed nodes inverts element {} (J = {:.3g})",
+                            energy.first_inverted, energy.inverted_j);
+    return false;
+  }
+  gradient -= t * m_external;
+
+  Eigen::VectorXd force(m_dofs.free_count());
+  Eigen::VectorXd velocity(m_dofs.free_count());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
+    force(static_cast<Eigen::Index>(f)) = -gradient(free_dofs[f]);
+    velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
+  }
+  // (M (1 + h alpha) + (h^2 + h beta) K) dv = h f - h (h + beta) K v - h alpha M v
+  //                                         = h f - (A v - M v).
+  const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
+  bool project = m_settings.projection == PsdProjection::always;
+  Eigen::VectorXd dv;
+  for (;;) {
+    report.projected_elements += m_linear.prepare(x, project, h * h + h * beta, mass_term);
+    Eigen::VectorXd Av;
+    m_linear.multiply(velocity, Av);
+    const Eigen::VectorXd rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
+    dv = Eigen::VectorXd::Zero(rhs.size());
+    const LinearSolveReport solve = m_linear.solve(rhs, dv);
+    report.linear_iterations += solve.iterations;
+    report.factorizations += solve.factorizations;
+    if (solve.ok && dv.allFinite())
+      break;
+    if (solve.indefinite && !project && m_settings.projection == PsdProjection::automatic) {
+      project = true;
+      continue;
+    }
+    m_failure = solve.indefinite
+                    ? "the system matrix is indefinite"
+                    : fmt::format("the linear solver did not converge (relative residual {:.3g})",
+                                  solve.relative_residual);
+    return false;
+  }
+  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
+    const Eigen::Index k = static_cast<Eigen::Index>(f);
+    v(free_dofs[f]) += dv(k);
+    x(free_dofs[f]) += h * v(free_dofs[f]);
+  }
+  const BodyEnergy after = m_body.energy(x);
+  if (!std::isfinite(after.energy)) {
+    m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
+                            after.inverted_j);
+    return false;
+  }
+  return true;
+}
+
+DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_frame)
+{
+  const auto start = std::chrono::steady_clock::now();
+  DynamicResult result;
+  if (x.size() != m_dofs.dof_count() || !x.allFinite()) {
+    result.failure = "the initial positions are missing or not finite";
+    return result;
+  }
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
+  const double h = m_settings.time_step_s;
+  for (int frame = 1; frame <= m_settings.frames; ++frame) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    FrameReport report;
+    report.frame = frame;
+    report.time_s = frame * h;
+    const double t_before = std::min(1.0, static_cast<double>(frame - 1) / m_settings.ramp_frames);
+    report.load_factor = std::min(1.0, static_cast<double>(frame) / m_settings.ramp_frames);
+
+    // The frame in 2^k equal sub-steps; k grows when a sub-step fails.
+    const Eigen::VectorXd x_saved = x;
+    const Eigen::VectorXd v_saved = v;
+    bool done = false;
+    for (int halvings = 0; halvings <= m_settings.max_halvings && !done; ++halvings) {
+      const int substeps = 1 << halvings;
+      x = x_saved;
+      v = v_saved;
+      done = true;
+      for (int s = 1; s <= substeps && done; ++s) {
+        const double t = t_before + (report.load_factor - t_before) * s / substeps;
+        done = step(x, v, h / substeps, t, report);
+      }
+      report.substeps = substeps;
+    }
+    result.substeps += report.substeps;
+    result.linear_iterations += report.linear_iterations;
+    result.factorizations += report.factorizations;
+    result.projected_elements += report.projected_elements;
+    if (!done) {
+      x = x_saved;
+      result.failure = fmt::format("frame {} failed after {} halvings of the time step: {}", frame,
+                                   m_settings.max_halvings, m_failure);
+      result.wall_s = seconds_since(start);
+      return result;
+    }
+
+    Eigen::VectorXd gradient;
+    report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
+    gradient -= report.load_factor * m_external;
+    double residual2 = 0.0;
+    double reaction2 = 0.0;
+    double inertia2 = 0.0;
+    for (int dof = 0; dof < m_dofs.dof_count(); ++dof) {
+      if (m_dofs.is_free(dof)) {
+        residual2 += gradient(dof) * gradient(dof);
+        inertia2 += std::pow(m_mass(dof) * v(dof) / h, 2);
+      } else {
+        reaction2 += gradient(dof) * gradient(dof);
+      }
+    }
+    const double scale = std::max(
+        {(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+    report.relative_residual = std::sqrt(residual2) / scale;
+    report.relative_inertia = std::sqrt(inertia2) / scale;
+    report.kinetic_energy_mj = 0.5 * v.dot(m_mass.cwiseProduct(v));
+    std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
+    report.wall_s = seconds_since(frame_start);
+    result.frames = frame;
+    if (on_frame)
+      on_frame(report, x, gradient);
+    const bool at_rest = report.load_factor >= 1.0 &&
+                         report.relative_residual <= m_settings.convergence_tolerance &&
+                         report.relative_inertia <= m_settings.convergence_tolerance;
+    if (at_rest)
+      result.reached_equilibrium = true;
+    if (at_rest && m_settings.until_converged)
+      break;
+  }
+  result.completed = !m_settings.until_converged || result.reached_equilibrium;
+  if (!result.completed)
+    result.failure = fmt::format("not at rest after {} frames (relative residual above {:.3g})",
+                                 result.frames, m_settings.convergence_tolerance);
+  result.wall_s = seconds_since(start);
+  return result;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,96 @@
+#pragma once
+/// @brief Dynamics by implicit Euler (Baraff and Witkin 1998): one linearised solve per frame,
+/// lumped masses, Rayleigh damping, prescribed DOFs filtered out of the solve; a frame whose
+/// result would invert an element is redone in halved sub-steps.
+
+#include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+#include "sim/solver/linear_solver.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct DynamicsSettings {
+  double time_step_s = 1e-3;
+  int frames = 100; ///< frames to run (a maximum when until_converged)
+  /// Stop as soon as the body is at rest in equilibrium (relative residual and inertial force
+  /// below convergence_tolerance) after the ramp.
+  bool until_converged = false;
+  double convergence_tolerance = 1e-6;
+  int ramp_frames = 1; ///< frames over which loads and prescribed motions reach full value
+  double density_kg_m3 = 1000.0;
+  double mass_damping_per_s = 0.0;  ///< Rayleigh alpha (velocity damping)
+  double stiffness_damping_s = 0.0; ///< Rayleigh beta
+  LinearSolverKind linear_solver = LinearSolverKind::pcg;
+  PcgSettings pcg;
+  PsdProjection projection = PsdProjection::automatic;
+  int max_halvings = 10; ///< sub-step halvings of one frame before giving up
+};
+
+struct FrameReport {
+  int frame = 0; ///< 1-based
+  double time_s = 0.0;
+  double load_factor = 0.0;
+  double relative_residual = 0.0; ///< ||f_int - f_ext|| on free DOFs over the force scale
+  double relative_inertia = 0.0;  ///< ||M v|| / h over the force scale
+  double kinetic_energy_mj = 0.0;
+  double strain_energy_mj = 0.0;
+  double min_j = 1.0;
+  int min_j_element = -1;
+  int substeps = 1;
+  int linear_iterations = 0;
+  int factorizations = 0;
+  int projected_elements = 0;
+  double wall_s = 0.0;
+};
+
+struct DynamicResult {
+  bool completed = false;        ///< ran all its frames (or reached equilibrium) without failure
+  bool reached_equilibrium = false;
+  std::string failure;
+  int frames = 0;
+  int linear_iterations = 0;
+  int factorizations = 0;
+  int projected_elements = 0;
+  int substeps = 0;
+  double wall_s = 0.0;
+};
+
+class ImplicitEuler {
+public:
+  /// Called after every frame with positions and the residual dE/dx - f_ext.
+  using FrameCallback = std::function<void(const FrameReport&, const Eigen::VectorXd& x,
+                                           const Eigen::VectorXd& residual)>;
+
+  ImplicitEuler(const HyperelasticBody& body, const BoundaryConditions& conditions,
+                const DynamicsSettings& settings);
+
+  /// Runs from positions `x` at rest (zero velocity). Never throws on divergence.
+  DynamicResult run(Eigen::VectorXd& x, const FrameCallback& on_frame = {});
+
+  /// Lumped nodal masses per DOF (flat), tonnes (mm, N, s units).
+  const Eigen::VectorXd& masses() const { return m_mass; }
+
+private:
+  /// One implicit Euler step of length h to load factor t; false on failure.
+  bool step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t, FrameReport& report);
+
+  const HyperelasticBody& m_body;
+  const BoundaryConditions& m_conditions;
+  DynamicsSettings m_settings;
+  DofPartition m_dofs;
+  Eigen::VectorXd m_external; ///< at load factor 1
+  Eigen::VectorXd m_mass;      ///< per DOF
+  Eigen::VectorXd m_free_mass; ///< per free DOF
+  StiffnessSolver m_linear;
+  double m_force_floor = 0.0;
+  std::string m_failure;
+};
+
+} // namespace ligsim::sim
