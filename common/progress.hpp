@@ -1,5 +1,6 @@
 #pragma once
-/// @brief Progress of long work on stderr: one line per tenth, so logs stay readable.
+/// @brief Progress of long work on stderr: one line per tenth once the work has run for a
+/// second, so logs stay readable.
 
 #include <chrono>
 #include <cstddef>
@@ -22,6 +23,8 @@ public:
   static void set_quiet(bool quiet);
 
 private:
+  double elapsed_s() const;
+
   std::string m_label;
   std::size_t m_total;
   std::size_t m_done = 0;

@@ -22,6 +22,7 @@ int main(int argc, char** argv)
   app.parse_complete_callback([&] { ligsim::Progress::set_quiet(quiet); });
 
   ligsim::cli::add_build_commands(app);
+  ligsim::cli::add_synth_command(app);
   ligsim::cli::add_simulate_command(app);
   ligsim::cli::add_verify_command(app);
   ligsim::cli::add_tear_command(app);

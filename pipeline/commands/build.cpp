@@ -1,15 +1,162 @@
 #include "pipeline/commands/commands.hpp"
 
 #include "common/error.hpp"
+#include "common/progress.hpp"
+#include "common/run_summary.hpp"
+#include "pipeline/build/build_config.hpp"
+#include "pipeline/build/stage_files.hpp"
+#include "pipeline/build/stage_graph.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+#include <memory>
+
 namespace ligsim::cli {
+
+namespace fs = std::filesystem;
+using pipeline::BuildConfig;
+
+namespace {
+
+constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
+
+/// Command-line flags of `build` and of every stage subcommand; each overrides the config file.
+struct BuildOptions {
+  std::string config, surface, femur, tibia, out;
+  std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
+  std::vector<int> femur_indices, tibia_indices;
+  double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
+  double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
+  double in_situ = kUnset;
+  std::string field_method;
+  bool force = false;
+};
+
+void add_options(CLI::App* command, BuildOptions& o)
+{
+  command->add_option("--config", o.config, "TOML file with every parameter (see README); flags override it")
+    ->check(CLI::ExistingFile);
+  command->add_option("--surface", o.surface, "ligament surface: .stl, .obj, .ply, .vtp or .vtk, mm");
+  command->add_option("--femur", o.femur, "femur surface (optional)");
+  command->add_option("--tibia", o.tibia, "tibia surface (optional)");
+  command->add_option("--out", o.out, "output folder")->required();
+  auto* attach = "Attachment areas";
+  command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")->group(attach);
+  command->add_option("--tibia-rule", o.tibia_rule, "auto, indices, array, proximity or end")->group(attach);
+  command->add_option("--femur-indices", o.femur_indices, "ligament vertex indices of A1")->delimiter(',')->group(attach);
+  command->add_option("--tibia-indices", o.tibia_indices, "ligament vertex indices of A2")->delimiter(',')->group(attach);
+  command->add_option("--femur-array", o.femur_array, "point-data array marking A1 (non-zero)")->group(attach);
+  command->add_option("--tibia-array", o.tibia_array, "point-data array marking A2 (non-zero)")->group(attach);
+  command->add_option("--attach-distance", o.attach_distance, "proximity rule: max distance to the bone, mm (default 1)")->group(attach);
+  command->add_option("--end-length", o.end_length, "end rule: length of the end along the main axis, mm (default 5)")->group(attach);
+  command->add_option("--femur-end", o.femur_end, "end rule: min, max or auto")->group(attach);
+  command->add_option("--tibia-end", o.tibia_end, "end rule: min, max or auto")->group(attach);
+  auto* stages = "Stage parameters";
+  command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")->group(stages);
+  command->add_option("--alpha", o.alpha, "centerline medial weight in [0, 1] (default 0.1)")->group(stages);
+  command->add_option("--field-method", o.field_method, "geometric (default) or laplace")->group(stages);
+  command->add_option("--cell-size", o.cell_size, "tet mesh max circumradius, mm")->group(stages);
+  command->add_option("--facet-size", o.facet_size, "tet mesh max surface Delaunay ball radius, mm")->group(stages);
+  command->add_option("--facet-distance", o.facet_distance, "tet mesh max distance to the surface, mm")->group(stages);
+  command->add_option("--radius-edge", o.radius_edge, "tet mesh radius-edge bound (default 2)")->group(stages);
+  command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")->group(stages);
+  command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
+}
+
+void set_if(double value, double& target)
+{
+  if (!std::isnan(value))
+    target = value;
+}
+void set_if(const std::string& value, std::string& target)
+{
+  if (!value.empty())
+    target = value;
+}
+
+void apply_rule_flags(attachments::Rule& rule, const std::string& kind, const std::vector<int>& indices,
+                      const std::string& array, const std::string& end, const BuildOptions& o)
+{
+  set_if(kind, rule.rule);
+  if (!indices.empty())
+    rule.indices = indices;
+  set_if(array, rule.array);
+  set_if(end, rule.end);
+  set_if(o.attach_distance, rule.distance_mm);
+  set_if(o.end_length, rule.end_length_mm);
+}
+
+BuildConfig resolve_config(const BuildOptions& o)
+{
+  BuildConfig config = o.config.empty() ? BuildConfig{} : pipeline::load_build_config(o.config);
+  if (!o.surface.empty())
+    config.surface = o.surface;
+  if (!o.femur.empty())
+    config.femur = o.femur;
+  if (!o.tibia.empty())
+    config.tibia = o.tibia;
+  apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array, o.femur_end, o);
+  apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array, o.tibia_end, o);
+  set_if(o.voxel, config.voxelize.spacing_mm);
+  set_if(o.alpha, config.centerline.alpha);
+  if (!o.field_method.empty())
+    config.field.method = field::parse_method(o.field_method);
+  set_if(o.cell_size, config.tetmesh.cell_size_mm);
+  set_if(o.facet_size, config.tetmesh.facet_size_mm);
+  set_if(o.facet_distance, config.tetmesh.facet_distance_mm);
+  set_if(o.radius_edge, config.tetmesh.radius_edge_ratio);
+  set_if(o.in_situ, config.model.in_situ_strain);
+  return config;
+}
+
+void run_build_job(const BuildOptions& o, const std::string& target)
+{
+  const BuildConfig config = resolve_config(o);
+  // Check every input before the output folder is touched, so bad input leaves nothing behind.
+  pipeline::load_ligament(config);
+  pipeline::load_bone(config.femur);
+  pipeline::load_bone(config.tibia);
+
+  const fs::path out = o.out;
+  const bool existed = fs::exists(out);
+  RunSummary summary(target == "model" ? "build" : target);
+  summary.inputs() = {{"config", o.config},
+                      {"surface", config.surface.string()},
+                      {"femur", config.femur.string()},
+                      {"tibia", config.tibia.string()}};
+  summary.parameters() = pipeline::to_json(config);
+  try {
+    pipeline::run_target(config, out, target, o.force, summary);
+  } catch (const Error&) {
+    std::error_code ignored;
+    if (!existed) {
+      fs::remove(out / ".ligsim-cache", ignored); // only removes it if empty
+      fs::remove(out, ignored);
+    }
+    throw;
+  }
+  summary.write(out);
+  log_info(fmt::format("wrote {}", (out / "summary.json").string()));
+}
+
+} // namespace
 
 void add_build_commands(CLI::App& app)
 {
-  auto* command = app.add_subcommand("build", "not implemented yet");
-  command->callback([] { fail("'build' is not implemented yet"); });
+  auto* build = app.add_subcommand("build", "run every model-building stage that is not current: "
+                                            "surface -> model.vtu + scene.toml");
+  auto build_options = std::make_shared<BuildOptions>();
+  add_options(build, *build_options);
+  build->callback([build_options] { run_build_job(*build_options, "model"); });
+
+  for (const pipeline::Stage& stage : pipeline::build_stages()) {
+    auto* command = app.add_subcommand(
+      stage.name, fmt::format("stage: {} (runs the stages it needs that are not current)", stage.description));
+    auto options = std::make_shared<BuildOptions>();
+    add_options(command, *options);
+    command->callback([options, name = stage.name] { run_build_job(*options, name); });
+  }
 }
 
 } // namespace ligsim::cli

@@ -7,7 +7,9 @@
 #include "stages/io/vtk_convert.hpp"
 
 #include <vtkCleanPolyData.h>
+#include <vtkDataArray.h>
 #include <vtkOBJReader.h>
+#include <vtkPointData.h>
 #include <vtkPLYReader.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
@@ -65,7 +67,7 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 
 } // namespace
 
-TriangleSurface read_surface(const fs::path& file)
+TriangleSurface read_surface(const fs::path& file, std::map<std::string, Eigen::VectorXd>* point_arrays)
 {
   if (!fs::is_regular_file(file))
     fail("missing surface file '{}'", file.string());
@@ -95,9 +97,22 @@ TriangleSurface read_surface(const fs::path& file)
   clean->ConvertStripsToPolysOff();
   clean->Update();
 
-  TriangleSurface surface = from_polydata(clean->GetOutput());
+  vtkPolyData* cleaned = clean->GetOutput();
+  TriangleSurface surface = from_polydata(cleaned);
   if (surface.F.rows() == 0)
     fail("'{}' holds no triangles", file.string());
+  if (point_arrays != nullptr) {
+    vtkPointData* data = cleaned->GetPointData();
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a) {
+      vtkDataArray* array = data->GetArray(a);
+      if (array == nullptr || array->GetName() == nullptr || array->GetNumberOfComponents() != 1)
+        continue;
+      Eigen::VectorXd values(array->GetNumberOfTuples());
+      for (Eigen::Index v = 0; v < values.size(); ++v)
+        values[v] = array->GetTuple1(v);
+      (*point_arrays)[array->GetName()] = values;
+    }
+  }
   return surface;
 }
 

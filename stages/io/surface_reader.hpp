@@ -3,7 +3,10 @@
 
 #include "common/mesh.hpp"
 
+#include <Eigen/Core>
+
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace ligsim::io {
@@ -11,7 +14,10 @@ namespace ligsim::io {
 /// Reads a triangle surface. Polygons are triangulated, coincident points merged, unused points
 /// dropped. Throws InputError naming the file on: a missing file, an unknown extension, a file
 /// with no triangles, a non-finite coordinate (with the vertex index).
-TriangleSurface read_surface(const std::filesystem::path& file);
+/// If `point_arrays` is given, it receives the file's one-component point-data arrays, by name,
+/// one value per (merged) vertex.
+TriangleSurface read_surface(const std::filesystem::path& file,
+                             std::map<std::string, Eigen::VectorXd>* point_arrays = nullptr);
 
 /// Throws InputError unless `surface` is a closed, consistently oriented 2-manifold without
 /// self-intersections; the message gives the count and the location of the defects.

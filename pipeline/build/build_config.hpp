@@ -1,0 +1,72 @@
+#pragma once
+/// @brief Every parameter of `ligsim build`, from a TOML config file and command-line flags.
+
+#include "stages/attachments/attachments.hpp"
+#include "stages/centerline/centerline.hpp"
+#include "stages/fibers/fibers.hpp"
+#include "stages/field/field.hpp"
+#include "stages/model/model.hpp"
+#include "stages/tetmesh/tetmesh.hpp"
+#include "stages/voxelize/voxelize.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace ligsim::pipeline {
+
+/// Material written into the model's scene: Weiss 1996 parameters of the MCL (paper
+/// section 4.2), units MPa.
+struct MaterialDefaults {
+  double mu_mpa = 27.7;
+  double c3_mpa = 2.07;
+  double c4 = 61.44;
+  double c5_mpa = 640.7;
+  double lambda_star = 1.03;
+  double bulk_modulus_mpa = 1000.0;
+  std::string fiber_convention = "paper"; ///< "paper" (eq. 14 gives dF/dlambda) or "weiss"
+  std::string volumetric = "jm1";         ///< "jm1": K/2 (J-1)^2 (paper eq. 22), or "lnj"
+};
+
+/// The knee flexion the model's scene prescribes: the femur nodes rotate about a flexion axis
+/// while the tibia nodes stay fixed.
+struct FlexionDefaults {
+  double max_angle_deg = 90.0;
+  int steps = 6;
+  /// The axis; when not given (`axis_given` false) the model stage picks the line through the
+  /// femoral attachment along the ligament's thinnest principal direction (for a collateral
+  /// ligament, the mediolateral direction: close to the transepicondylar axis).
+  bool axis_given = false;
+  Eigen::Vector3d axis_point_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitX();
+};
+
+struct BuildConfig {
+  std::filesystem::path surface; ///< ligament surface (required)
+  std::filesystem::path femur;   ///< optional
+  std::filesystem::path tibia;   ///< optional
+  attachments::Rule femur_attachment;
+  attachments::Rule tibia_attachment;
+  voxelize::Parameters voxelize;
+  centerline::Parameters centerline;
+  field::Parameters field;
+  tetmesh::Parameters tetmesh;
+  fibers::Parameters fibers;
+  model::Parameters model;
+  MaterialDefaults material;
+  FlexionDefaults flexion;
+};
+
+/// Reads a TOML config (format in README.md). Relative paths are relative to the file's folder.
+/// Throws InputError with the file, line and key on a syntax error, an unknown key or a value
+/// of the wrong type.
+BuildConfig load_build_config(const std::filesystem::path& file);
+
+/// The parameters one stage depends on, as JSON (for summary.json and the cache key).
+nlohmann::json stage_parameters(const BuildConfig& config, const std::string& stage);
+
+/// Every parameter, as JSON.
+nlohmann::json to_json(const BuildConfig& config);
+
+} // namespace ligsim::pipeline

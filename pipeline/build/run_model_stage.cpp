@@ -1,0 +1,66 @@
+/// The last stage: the simulation model, the bone surfaces and the scene file.
+
+#include "pipeline/build/scene_writer.hpp"
+#include "pipeline/build/stage_files.hpp"
+
+#include "common/vtk_files.hpp"
+#include "stages/io/vtk_convert.hpp"
+#include "stages/model/model.hpp"
+
+#include <vtkCellData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+
+namespace ligsim::pipeline {
+
+namespace fs = std::filesystem;
+
+nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
+{
+  const TriangleSurface ligament = load_ligament(config);
+  const StoredAttachments areas = load_attachments(dir);
+  auto fibers_grid = read_vtu(dir / files::fibers);
+  const TetMesh mesh = io::from_unstructured_grid(fibers_grid);
+  const Eigen::MatrixX3d directions = io::get_array(fibers_grid->GetCellData(), "fiber");
+  const model::Model built =
+    model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
+
+  auto grid = io::to_unstructured_grid(built.mesh);
+  io::add_array(grid->GetCellData(), "fiber", built.fibers);
+  io::add_flags(grid->GetPointData(), "femur_attached", built.femur_nodes);
+  io::add_flags(grid->GetPointData(), "tibia_attached", built.tibia_nodes);
+  write_vtk(grid, dir / files::model);
+
+  std::vector<std::string> bones;
+  for (const auto& [file, name] : {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}})
+    if (const auto bone = load_bone(file)) {
+      write_vtk(io::to_polydata(*bone), dir / name);
+      bones.push_back(name);
+    }
+
+  Eigen::Vector3d femoral_mean = Eigen::Vector3d::Zero();
+  for (int v : areas.femur)
+    femoral_mean += ligament.V.row(v).transpose();
+  femoral_mean /= static_cast<double>(areas.femur.size());
+  model::Axis axis = model::default_flexion_axis(ligament, femoral_mean);
+  if (config.flexion.axis_given)
+    axis = {config.flexion.axis_point_mm, config.flexion.axis_direction.normalized()};
+  write_scene(dir / files::scene, config, axis, bones);
+
+  const auto count = [](const std::vector<bool>& flags) { return std::count(flags.begin(), flags.end(), true); };
+  return {{"tets", built.mesh.T.rows()},
+          {"nodes", built.mesh.V.rows()},
+          {"boundary_nodes", built.boundary_nodes},
+          {"femur_nodes", count(built.femur_nodes)},
+          {"tibia_nodes", count(built.tibia_nodes)},
+          {"fiber_length", 1.0 + config.model.in_situ_strain},
+          {"flexion_axis",
+           {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},
+            {"direction", {axis.direction.x(), axis.direction.y(), axis.direction.z()}},
+            {"rule", config.flexion.axis_given ? "given" : "femoral attachment, thinnest principal direction"}}}};
+}
+
+} // namespace ligsim::pipeline

@@ -1,0 +1,108 @@
+/// The stages that start from the surfaces: attachments, voxelize, distance, tetmesh.
+
+#include "pipeline/build/stage_files.hpp"
+
+#include "common/vtk_files.hpp"
+#include "stages/attachments/attachments.hpp"
+#include "stages/distance/distance.hpp"
+#include "stages/geometry/surface_query.hpp"
+#include "stages/io/vtk_convert.hpp"
+#include "stages/tetmesh/tetmesh.hpp"
+#include "stages/voxelize/voxelize.hpp"
+
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+
+namespace ligsim::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json area_json(const attachments::Area& area)
+{
+  return {{"rule", area.rule},
+          {"vertices", area.vertices.size()},
+          {"mean_mm", {area.mean.x(), area.mean.y(), area.mean.z()}}};
+}
+
+std::vector<bool> membership(const std::vector<int>& vertices, Eigen::Index count)
+{
+  std::vector<bool> flags(static_cast<std::size_t>(count), false);
+  for (int v : vertices)
+    flags[static_cast<std::size_t>(v)] = true;
+  return flags;
+}
+
+} // namespace
+
+nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
+{
+  std::map<std::string, Eigen::VectorXd> arrays;
+  const TriangleSurface ligament = load_ligament(config, &arrays);
+  const auto femur = load_bone(config.femur);
+  const auto tibia = load_bone(config.tibia);
+  attachments::Inputs inputs{&ligament, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr,
+                             std::move(arrays)};
+  const attachments::Attachments found =
+    attachments::find(inputs, config.femur_attachment, config.tibia_attachment);
+
+  auto surface = io::to_polydata(ligament);
+  io::add_flags(surface->GetPointData(), "femur_attachment", membership(found.femur.vertices, ligament.V.rows()));
+  io::add_flags(surface->GetPointData(), "tibia_attachment", membership(found.tibia.vertices, ligament.V.rows()));
+  write_vtk(surface, dir / files::attachments);
+  return {{"surface_vertices", ligament.V.rows()},
+          {"surface_triangles", ligament.F.rows()},
+          {"femur", area_json(found.femur)},
+          {"tibia", area_json(found.tibia)}};
+}
+
+nlohmann::json run_voxelize(const BuildConfig& config, const fs::path& dir)
+{
+  const SurfaceQuery query(load_ligament(config));
+  const Mask mask = voxelize::voxelize(query, config.voxelize);
+  write_vtk(io::to_image(mask, "inside"), dir / files::mask);
+  const auto inside = std::count(mask.values.begin(), mask.values.end(), 1);
+  nlohmann::json figures = grid_json(mask);
+  figures["inside_voxels"] = inside;
+  figures["inside_volume_mm3"] = static_cast<double>(inside) * std::pow(mask.spacing, 3);
+  return figures;
+}
+
+nlohmann::json run_distance(const BuildConfig& config, const fs::path& dir)
+{
+  const SurfaceQuery query(load_ligament(config));
+  const Mask mask = load_mask(dir);
+  const ScalarGrid distance = distance::signed_distance(query, mask);
+  write_vtk(io::to_image(distance, "distance"), dir / files::distance);
+  const float d_max = *std::max_element(distance.values.begin(), distance.values.end());
+  return {{"max_inside_distance_mm", d_max}};
+}
+
+nlohmann::json run_tetmesh(const BuildConfig& config, const fs::path& dir)
+{
+  const TriangleSurface ligament = load_ligament(config);
+  const tetmesh::Result result = tetmesh::make_tet_mesh(ligament, config.tetmesh);
+  write_vtk(io::to_unstructured_grid(result.mesh), dir / files::mesh);
+  const tetmesh::Quality& q = result.quality;
+  return {{"tets", q.tets},
+          {"nodes", q.nodes},
+          {"min_dihedral_deg", q.min_dihedral_deg},
+          {"max_dihedral_deg", q.max_dihedral_deg},
+          {"worst_radius_edge_ratio", q.worst_radius_edge_ratio},
+          {"min_volume_mm3", q.min_volume_mm3},
+          {"total_volume_mm3", q.total_volume_mm3},
+          {"surface_volume_mm3", q.surface_volume_mm3},
+          {"max_surface_distance_mm", q.max_surface_distance_mm},
+          {"max_facet_circumcentre_distance_mm", q.max_facet_circumcentre_distance_mm},
+          {"used",
+           {{"cell_size_mm", result.used.cell_size_mm},
+            {"facet_size_mm", result.used.facet_size_mm},
+            {"facet_distance_mm", result.used.facet_distance_mm}}}};
+}
+
+} // namespace ligsim::pipeline

@@ -1,0 +1,71 @@
+#include "pipeline/build/stage_files.hpp"
+
+#include "common/error.hpp"
+#include "common/vtk_files.hpp"
+#include "stages/io/surface_reader.hpp"
+#include "stages/io/vtk_convert.hpp"
+
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+namespace ligsim::pipeline {
+
+namespace fs = std::filesystem;
+
+TriangleSurface load_ligament(const BuildConfig& config, std::map<std::string, Eigen::VectorXd>* arrays)
+{
+  if (config.surface.empty())
+    fail("no ligament surface given (--surface or [input] surface)");
+  TriangleSurface surface = io::read_surface(config.surface, arrays);
+  io::orient_outward(surface);
+  io::require_closed_manifold(surface, fmt::format("ligament surface '{}'", config.surface.string()));
+  return surface;
+}
+
+std::optional<TriangleSurface> load_bone(const fs::path& file)
+{
+  if (file.empty())
+    return std::nullopt;
+  TriangleSurface surface = io::read_surface(file);
+  io::orient_outward(surface);
+  return surface;
+}
+
+Mask load_mask(const fs::path& dir) { return io::from_image<std::uint8_t>(read_vti(dir / files::mask), "inside"); }
+ScalarGrid load_distance(const fs::path& dir) { return io::from_image<float>(read_vti(dir / files::distance), "distance"); }
+ScalarGrid load_field(const fs::path& dir) { return io::from_image<float>(read_vti(dir / files::field), "D"); }
+
+Polyline load_centerline(const fs::path& dir)
+{
+  auto polydata = read_vtp(dir / files::centerline);
+  const Eigen::MatrixXd tangents = io::get_array(polydata->GetPointData(), "tangent");
+  return Polyline(io::points_of(polydata), tangents);
+}
+
+TetMesh load_mesh(const fs::path& file) { return io::from_unstructured_grid(read_vtu(file)); }
+
+StoredAttachments load_attachments(const fs::path& dir)
+{
+  auto polydata = read_vtp(dir / files::attachments);
+  const Eigen::MatrixXd femur = io::get_array(polydata->GetPointData(), "femur_attachment");
+  const Eigen::MatrixXd tibia = io::get_array(polydata->GetPointData(), "tibia_attachment");
+  StoredAttachments result;
+  for (Eigen::Index v = 0; v < femur.rows(); ++v) {
+    if (femur(v, 0) != 0.0)
+      result.femur.push_back(static_cast<int>(v));
+    if (tibia(v, 0) != 0.0)
+      result.tibia.push_back(static_cast<int>(v));
+  }
+  return result;
+}
+
+nlohmann::json grid_json(const Mask& mask)
+{
+  return {{"dims", {mask.dims.x(), mask.dims.y(), mask.dims.z()}},
+          {"spacing_mm", mask.spacing},
+          {"voxels", mask.voxel_count()}};
+}
+
+} // namespace ligsim::pipeline

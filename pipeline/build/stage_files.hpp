@@ -1,0 +1,66 @@
+#pragma once
+/// @brief What the build stages share: the names of their files and how to load their inputs.
+
+#include "common/mesh.hpp"
+#include "pipeline/build/build_config.hpp"
+#include "stages/geometry/grid.hpp"
+#include "stages/geometry/polyline.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <optional>
+
+namespace ligsim::pipeline {
+
+/// Output files of the stages, in the output folder.
+namespace files {
+inline constexpr const char* attachments = "attachments.vtp";
+inline constexpr const char* mask = "mask.vti";
+inline constexpr const char* distance = "distance.vti";
+inline constexpr const char* centerline = "centerline.vtp";
+inline constexpr const char* field = "field.vti";
+inline constexpr const char* mesh = "mesh.vtu";
+inline constexpr const char* fibers = "fibers.vtu";
+inline constexpr const char* fiber_lines = "fibers.vtp";
+inline constexpr const char* model = "model.vtu";
+inline constexpr const char* femur = "femur.vtp";
+inline constexpr const char* tibia = "tibia.vtp";
+inline constexpr const char* scene = "scene.toml";
+} // namespace files
+
+/// The ligament surface: read, oriented outward, and required to be a closed manifold without
+/// self-intersections.
+TriangleSurface load_ligament(const BuildConfig& config,
+                              std::map<std::string, Eigen::VectorXd>* arrays = nullptr);
+
+/// A bone surface if the config names one.
+std::optional<TriangleSurface> load_bone(const std::filesystem::path& file);
+
+Mask load_mask(const std::filesystem::path& dir);
+ScalarGrid load_distance(const std::filesystem::path& dir);
+ScalarGrid load_field(const std::filesystem::path& dir);
+Polyline load_centerline(const std::filesystem::path& dir);
+TetMesh load_mesh(const std::filesystem::path& file);
+
+/// The two attachment areas stored by the attachments stage: sorted vertex indices.
+struct StoredAttachments {
+  std::vector<int> femur;
+  std::vector<int> tibia;
+};
+StoredAttachments load_attachments(const std::filesystem::path& dir);
+
+/// Grid geometry for summary.json.
+nlohmann::json grid_json(const Mask& mask);
+
+/// The stages' run functions (see stage_list.cpp for the graph).
+nlohmann::json run_attachments(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_voxelize(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_distance(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_centerline(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_field(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_tetmesh(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_fibers(const BuildConfig& config, const std::filesystem::path& dir);
+nlohmann::json run_model(const BuildConfig& config, const std::filesystem::path& dir);
+
+} // namespace ligsim::pipeline

@@ -1,0 +1,114 @@
+#include "pipeline/build/stage_graph.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/content_hash.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "common/resources.hpp"
+#include "common/run_summary.hpp"
+
+#include <fstream>
+#include <set>
+
+namespace ligsim::pipeline {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Bumped when a stage's algorithm changes, so old caches are not trusted.
+constexpr const char* kAlgorithmVersion = "ligsim-build-1";
+
+const Stage& find_stage(const std::string& name)
+{
+  for (const Stage& stage : build_stages())
+    if (stage.name == name)
+      return stage;
+  fail("unknown stage '{}'", name);
+}
+
+/// `target` and its transitive dependencies, in data-flow order.
+std::vector<const Stage*> plan(const std::string& target)
+{
+  std::set<std::string> needed;
+  std::vector<std::string> open{target};
+  while (!open.empty()) {
+    const std::string name = open.back();
+    open.pop_back();
+    if (needed.insert(name).second)
+      for (const std::string& upstream : find_stage(name).depends)
+        open.push_back(upstream);
+  }
+  std::vector<const Stage*> order;
+  for (const Stage& stage : build_stages())
+    if (needed.count(stage.name))
+      order.push_back(&stage);
+  return order;
+}
+
+fs::path cache_file(const fs::path& dir, const std::string& stage)
+{
+  return dir / ".ligsim-cache" / (stage + ".json");
+}
+
+std::string stage_key(const Stage& stage, const BuildConfig& config, const fs::path& dir)
+{
+  ContentHash hash;
+  hash.add(kAlgorithmVersion).add(stage.name).add(stage_parameters(config, stage.name).dump());
+  for (const fs::path& input : stage.user_inputs(config))
+    hash.add(input.filename().string()).add_file(input);
+  for (const std::string& upstream : stage.depends)
+    for (const std::string& output : find_stage(upstream).outputs)
+      hash.add(output).add_file(dir / output);
+  return hash.hex();
+}
+
+nlohmann::json read_cache(const fs::path& file)
+{
+  std::ifstream in(file);
+  if (!in)
+    return nullptr;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return nullptr; // a damaged cache entry only means the stage reruns
+  }
+}
+
+} // namespace
+
+void run_target(const BuildConfig& config, const fs::path& dir, const std::string& target,
+                bool force, RunSummary& summary)
+{
+  ensure_directory(dir);
+  ensure_directory(dir / ".ligsim-cache");
+  for (const Stage* stage : plan(target)) {
+    const std::string key = stage_key(*stage, config, dir);
+    const nlohmann::json cached = read_cache(cache_file(dir, stage->name));
+    bool current = !force && cached.is_object() && cached.value("key", "") == key;
+    for (const std::string& output : stage->outputs)
+      current = current && fs::exists(dir / output);
+    nlohmann::json& entry = summary.stage(stage->name);
+    entry["parameters"] = stage_parameters(config, stage->name);
+    if (current) {
+      log_info(fmt::format("{}: current, reused", stage->name));
+      entry["status"] = "reused";
+      entry["figures"] = cached["figures"];
+      entry["wall_s"] = 0.0;
+      entry["previous_wall_s"] = cached.value("wall_s", 0.0);
+      entry["previous_peak_rss_mib"] = cached.value("peak_rss_mib", 0.0);
+      continue;
+    }
+    log_info(fmt::format("{}: {}", stage->name, stage->description));
+    const StageMeter meter;
+    nlohmann::json figures = stage->run(config, dir);
+    summary.add_stage(stage->name, meter, {{"status", "ran"}, {"figures", figures}});
+    const nlohmann::json record = {{"key", key},
+                                   {"figures", figures},
+                                   {"wall_s", meter.wall_s()},
+                                   {"peak_rss_mib", meter.peak_rss_mib()}};
+    write_text_atomically(cache_file(dir, stage->name), record.dump(2) + "\n");
+  }
+}
+
+} // namespace ligsim::pipeline

@@ -1,0 +1,94 @@
+#include "stages/model/model.hpp"
+
+#include "common/error.hpp"
+#include "stages/geometry/surface_query.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace ligsim::model {
+
+std::vector<bool> boundary_nodes(const TetMesh& mesh)
+{
+  static const int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<int, 3>, int> count;
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+    for (const auto& f : faces) {
+      std::array<int, 3> key{mesh.T(t, f[0]), mesh.T(t, f[1]), mesh.T(t, f[2])};
+      std::sort(key.begin(), key.end());
+      ++count[key];
+    }
+  std::vector<bool> on_boundary(static_cast<std::size_t>(mesh.V.rows()), false);
+  for (const auto& [face, n] : count)
+    if (n == 1)
+      for (int v : face)
+        on_boundary[static_cast<std::size_t>(v)] = true;
+  return on_boundary;
+}
+
+Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
+               const TriangleSurface& ligament, const std::vector<int>& femur_area,
+               const std::vector<int>& tibia_area, const Parameters& parameters)
+{
+  if (directions.rows() != mesh.T.rows())
+    fail("model: {} fiber directions for {} tets", directions.rows(), mesh.T.rows());
+  for (Eigen::Index t = 0; t < directions.rows(); ++t)
+    if (!directions.row(t).allFinite() || std::abs(directions.row(t).norm() - 1.0) > 1e-6)
+      fail("model: the fiber direction of tet {} is not a unit vector", t);
+  if (!(parameters.in_situ_strain > -1.0) || !std::isfinite(parameters.in_situ_strain))
+    fail("model: in-situ strain must exceed -1, got {}", parameters.in_situ_strain);
+
+  Model model;
+  model.mesh = mesh;
+  model.fibers = (1.0 + parameters.in_situ_strain) * directions;
+  const std::vector<bool> boundary = boundary_nodes(mesh);
+  const std::size_t n = boundary.size();
+  model.femur_nodes.assign(n, false);
+  model.tibia_nodes.assign(n, false);
+
+  std::vector<char> area_of(static_cast<std::size_t>(ligament.V.rows()), 0); // 1 femur, 2 tibia
+  for (int v : femur_area)
+    area_of[static_cast<std::size_t>(v)] = 1;
+  for (int v : tibia_area)
+    area_of[static_cast<std::size_t>(v)] = 2;
+  const SurfaceQuery query(ligament);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!boundary[v])
+      continue;
+    ++model.boundary_nodes;
+    const int face = query.closest(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()).face;
+    int femur = 0, tibia = 0;
+    for (int k = 0; k < 3; ++k) {
+      const char a = area_of[static_cast<std::size_t>(ligament.F(face, k))];
+      femur += a == 1;
+      tibia += a == 2;
+    }
+    model.femur_nodes[v] = femur >= 2;
+    model.tibia_nodes[v] = tibia >= 2;
+  }
+  const auto femur_count = std::count(model.femur_nodes.begin(), model.femur_nodes.end(), true);
+  const auto tibia_count = std::count(model.tibia_nodes.begin(), model.tibia_nodes.end(), true);
+  if (femur_count == 0 || tibia_count == 0)
+    fail("model: no mesh node lies on the {} attachment area ({} vertices): the tet mesh is too "
+         "coarse for it; use a smaller tetmesh facet size",
+         femur_count == 0 ? "femoral" : "tibial",
+         femur_count == 0 ? femur_area.size() : tibia_area.size());
+  return model;
+}
+
+Axis default_flexion_axis(const TriangleSurface& ligament, const Eigen::Vector3d& femoral_attachment)
+{
+  const Eigen::RowVector3d mean = ligament.V.colwise().mean();
+  const Eigen::MatrixX3d centred = ligament.V.rowwise() - mean;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(centred.transpose() * centred);
+  Eigen::Vector3d direction = solver.eigenvectors().col(0); // smallest eigenvalue
+  if (direction.x() < 0.0)
+    direction = -direction;
+  return {femoral_attachment, direction.normalized()};
+}
+
+} // namespace ligsim::model

@@ -1,0 +1,49 @@
+#pragma once
+/// @brief Stage 7: the simulation model: tets, fibers with in-situ strain, nodes bound to bones.
+
+#include "common/mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace ligsim::model {
+
+struct Parameters {
+  /// In-situ strain c of paper section 2.7: the fiber vector is scaled to (1 + c) a, so the
+  /// fibers are under strain c in the rest shape. 2.9 % for the MCL (section 4.2).
+  double in_situ_strain = 0.029;
+};
+
+struct Model {
+  TetMesh mesh;
+  Eigen::MatrixX3d fibers;          ///< #T x 3, length 1 + in-situ strain
+  std::vector<bool> femur_nodes;    ///< #V: nodes bound to the femur (moved with it)
+  std::vector<bool> tibia_nodes;    ///< #V: nodes bound to the tibia (fixed)
+  int boundary_nodes = 0;           ///< nodes on the mesh surface
+};
+
+/// The nodes on the boundary of a tet mesh (on a face that belongs to one tet only).
+std::vector<bool> boundary_nodes(const TetMesh& mesh);
+
+/// Builds the model. A boundary node is bound to a bone when the ligament-surface triangle
+/// nearest it has at least two vertices in that bone's attachment area (`femur_area`,
+/// `tibia_area`: sorted ligament-surface vertex indices). Throws InputError if either bone
+/// binds no node, or if `directions` does not hold one unit vector per tet.
+Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
+               const TriangleSurface& ligament, const std::vector<int>& femur_area,
+               const std::vector<int>& tibia_area, const Parameters& parameters);
+
+/// A line: a point on it and a unit direction.
+struct Axis {
+  Eigen::Vector3d point;
+  Eigen::Vector3d direction;
+};
+
+/// The default knee flexion axis for a collateral ligament: through the femoral attachment
+/// (the MCL's femoral insertion lies at the medial epicondyle, on the transepicondylar axis),
+/// along the ligament's thinnest principal direction (a collateral ligament is a band lying
+/// against the side of the knee, so its thickness runs mediolaterally). Oriented with x >= 0.
+Axis default_flexion_axis(const TriangleSurface& ligament, const Eigen::Vector3d& femoral_attachment);
+
+} // namespace ligsim::model
