@@ -6,6 +6,7 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "sim/verify/cube_verification.hpp"
+#include "sim/verify/stability.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -121,6 +122,50 @@ void run_cube(const CubeOptions& options)
                       results.size());
 }
 
+struct StabilityOptions {
+  fs::path out;
+  int cells = 8;
+  std::vector<std::string> cases;
+};
+
+void run_stability(const StabilityOptions& options)
+{
+  RunSummary summary("verify stability");
+  summary.parameters()["cells"] = options.cells;
+  std::vector<std::string> names = options.cases;
+  if (names.empty())
+    for (const sim::StabilityCase& c : sim::stability_cases())
+      names.push_back(c.name);
+  std::vector<sim::StabilityResult> results;
+  StageMeter meter;
+  for (const std::string& name : names) {
+    results.push_back(sim::run_stability_case(name, options.cells));
+    const sim::StabilityResult& r = results.back();
+    log_info(fmt::format("{}: {} ({} iterations, {:.2f} s, worst J {:.4f}){}", r.name, r.outcome,
+                         r.iterations, r.wall_s, r.min_j,
+                         r.diagnostic.empty() ? "" : ": " + r.diagnostic));
+  }
+  summary.add_stage("cases", meter, {{"cases", results.size()}});
+  ensure_directory(options.out);
+  const nlohmann::json json = sim::stability_json(results);
+  write_text_atomically(options.out / "stability.json", json.dump(2) + "\n");
+  write_text_atomically(options.out / "stability.md",
+                        fmt::format("# Stability on stiff and extreme cases\n\nUnit cube, {0} x "
+                                    "{0} x {0} hexes x 5 tets, MCL material (paper convention, "
+                                    "K/2 (J-1)^2), bottom fixed, load on the top face.\n\n",
+                                    options.cells) +
+                            sim::stability_table(results));
+  summary.results() = json;
+  summary.write(options.out);
+  int failed = 0;
+  for (const sim::StabilityResult& r : results)
+    failed += r.outcome == "FAILED" ? 1 : 0;
+  if (failed > 0)
+    fail<SolverError>("{} stability cases ended without an answer or a diagnostic (see "
+                      "stability.md)",
+                      failed);
+}
+
 } // namespace
 
 void add_verify_command(CLI::App& app)
@@ -146,6 +191,15 @@ void add_verify_command(CLI::App& app)
   cube->add_flag("--sweep", options->sweep,
                  "error against run time over mesh sizes, tolerances and linear solvers");
   cube->callback([options] { run_cube(*options); });
+
+  auto stability_options = std::make_shared<StabilityOptions>();
+  auto* stability = verify->add_subcommand(
+      "stability", "stiff and extreme cases: converged or a diagnostic (stability.json, .md)");
+  stability->add_option("--out", stability_options->out, "output folder")->required();
+  stability->add_option("--cells", stability_options->cells, "hexes per cube edge")
+      ->capture_default_str();
+  stability->add_option("--cases", stability_options->cases, "only these cases")->delimiter(',');
+  stability->callback([stability_options] { run_stability(*stability_options); });
 }
 
 } // namespace ligsim::cli

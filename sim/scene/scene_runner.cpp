@@ -108,36 +108,43 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     Eigen::VectorXd x = body.rest_positions();
     if (output)
       output->write_step(0, 0.0, x);
+    auto record = [&](const FrameReport& frame, const Eigen::VectorXd& state,
+                      const Eigen::VectorXd& residual) {
+      nlohmann::json entry = {{"frame", frame.frame},
+                              {"time_s", frame.time_s},
+                              {"load_factor", frame.load_factor},
+                              {"relative_residual", frame.relative_residual},
+                              {"relative_inertia", frame.relative_inertia},
+                              {"kinetic_energy_mj", frame.kinetic_energy_mj},
+                              {"strain_energy_mj", frame.strain_energy_mj},
+                              {"min_j", frame.min_j},
+                              {"min_j_element", frame.min_j_element},
+                              {"substeps", frame.substeps},
+                              {"cg_iterations", frame.linear_iterations},
+                              {"factorizations", frame.factorizations},
+                              {"wall_s", frame.wall_s}};
+      entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
+                                          fmt::format("{},{}", frame.frame, frame.time_s));
+      entries.push_back(entry);
+      if (output)
+        output->write_step(frame.frame, frame.time_s, state);
+    };
+    // Every output frame is recorded as it comes; the last one always.
+    FrameReport last;
+    Eigen::VectorXd last_residual;
     const DynamicResult result = solver.run(
         x, [&](const FrameReport& frame, const Eigen::VectorXd& state,
                const Eigen::VectorXd& residual) {
-          const bool output_frame = frame.frame % scene.output.every == 0;
-          if (!output_frame)
-            return;
-          nlohmann::json entry = {{"frame", frame.frame},
-                                  {"time_s", frame.time_s},
-                                  {"load_factor", frame.load_factor},
-                                  {"relative_residual", frame.relative_residual},
-                                  {"relative_inertia", frame.relative_inertia},
-                                  {"kinetic_energy_mj", frame.kinetic_energy_mj},
-                                  {"strain_energy_mj", frame.strain_energy_mj},
-                                  {"min_j", frame.min_j},
-                                  {"min_j_element", frame.min_j_element},
-                                  {"substeps", frame.substeps},
-                                  {"cg_iterations", frame.linear_iterations},
-                                  {"factorizations", frame.factorizations},
-                                  {"wall_s", frame.wall_s}};
-          entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
-                                              fmt::format("{},{}", frame.frame, frame.time_s));
-          entries.push_back(entry);
-          if (output)
-            output->write_step(frame.frame, frame.time_s, state);
+          last = frame;
+          if (frame.frame % scene.output.every == 0)
+            record(frame, state, residual);
+          else
+            last_residual = residual;
         });
     run.success = result.completed;
     run.failure = result.failure;
-    // The last frame is always in the outputs.
-    if (result.frames > 0 && result.frames % scene.output.every != 0 && output)
-      output->write_step(result.frames, result.frames * scene.dynamics.time_step_s, x);
+    if (last.frame > 0 && last.frame % scene.output.every != 0)
+      record(last, x, last_residual);
     solve_figures = {{"completed", result.completed},
                      {"reached_equilibrium", result.reached_equilibrium},
                      {"frames", result.frames},

@@ -118,6 +118,7 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, const Eigen::Vecto
     if (!project && m_settings.projection == PsdProjection::automatic &&
         (solve.indefinite || solve.ok)) {
       project = true;
+      ++report.indefinite_iterations;
       continue;
     }
     if (solve.indefinite)
@@ -219,6 +220,10 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport&
     if (iteration == m_settings.max_iterations) {
       m_failure = fmt::format("no convergence in {} Newton iterations (relative residual {:.3g})",
                               iteration, report.relative_residual);
+      if (report.indefinite_iterations > 0)
+        m_failure += fmt::format("; the stiffness matrix was indefinite in {} iterations: the "
+                                 "equilibrium is unstable at this load (buckling?)",
+                                 report.indefinite_iterations);
       return false;
     }
     ++report.iterations;
@@ -269,8 +274,11 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport&
       return false;
     }
     if (m_settings.verbose)
-      log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g}", t1,
-                           iteration + 1, report.relative_residual, alpha));
+      log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g} "
+                           "({} projected elements, {} factorisations, {} CG iterations so far)",
+                           t1, iteration + 1, report.relative_residual, alpha,
+                           report.projected_elements, report.factorizations,
+                           report.linear_iterations));
     last_energy_change = std::abs(alpha * slope);
     if (iteration == 0)
       first_energy_change = last_energy_change;

@@ -49,6 +49,7 @@ struct StepReport {
   int linear_iterations = 0; ///< CG iterations
   int factorizations = 0;    ///< sparse Cholesky factorisations
   int projected_elements = 0; ///< element stiffness projections, summed over iterations
+  int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
   int line_search_backtracks = 0;
   double relative_residual = 0.0;
   double strain_energy_mj = 0.0; ///< N mm
