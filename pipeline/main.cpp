@@ -17,6 +17,7 @@ int main(int argc, char** argv)
   CLI::App app{"ligsim: subject-specific ligament models, hyperelastic simulation and "
                "membrane tearing"};
   app.require_subcommand(1);
+  app.fallthrough(); // --quiet also after the subcommand
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
   app.parse_complete_callback([&] { ligsim::Progress::set_quiet(quiet); });

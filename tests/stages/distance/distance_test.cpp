@@ -26,6 +26,26 @@ TEST(Distance, WithinTwoPercentOfTheAnalyticDistanceOnACylinder)
   EXPECT_LT(worst, 0.02);
 }
 
+TEST(Distance, IsExactInABandOutsideAndClampedBeyond)
+{
+  const auto v = test::voxelise(synthetic::cylinder(3.0, 10.0), 0.5);
+  const float far = static_cast<float>(-distance::kFarOutsideVoxels * 0.5);
+  int band = 0, beyond = 0;
+  for (std::size_t i = 0; i < v.mask.values.size(); ++i) {
+    if (v.mask.values[i])
+      continue;
+    if (v.distance.values[i] == far) {
+      ++beyond;
+      EXPECT_GT(v.query.distance(v.mask.point(i)), 0.5 * 0.999); // at least a voxel from the inside
+    } else {
+      ++band;
+      EXPECT_NEAR(-v.distance.values[i], v.query.distance(v.mask.point(i)), 1e-5);
+    }
+  }
+  EXPECT_GT(band, 100);
+  EXPECT_GT(beyond, 100);
+}
+
 TEST(Distance, IsSignedPositiveInside)
 {
   const auto v = test::voxelise(synthetic::cylinder(3.0, 10.0), 0.5);

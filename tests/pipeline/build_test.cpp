@@ -1,0 +1,147 @@
+/// `ligsim build` end to end: on the synthetic band (cache behaviour, every output readable by
+/// VTK) and on the shipped real MCL.
+
+#include "common/vtk_files.hpp"
+#include "stages/geometry/surface_query.hpp"
+#include "stages/io/surface_reader.hpp"
+#include "stages/io/vtk_convert.hpp"
+#include "tests/pipeline/cli_runner.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <vtkCellData.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <fstream>
+
+using namespace ligsim;
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json read_summary(const fs::path& dir)
+{
+  std::ifstream in(dir / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+std::map<std::string, std::string> statuses(const nlohmann::json& summary)
+{
+  std::map<std::string, std::string> result;
+  for (const auto& [name, stage] : summary["stages"].items())
+    result[name] = stage["status"];
+  return result;
+}
+
+/// Reads every VTK output back with VTK's readers and checks the arrays the next stage needs.
+void expect_readable_outputs(const fs::path& dir)
+{
+  EXPECT_GT(read_vtp(dir / "attachments.vtp")->GetPointData()->GetArray("femur_attachment")->GetNumberOfTuples(), 0);
+  EXPECT_NE(read_vti(dir / "mask.vti")->GetPointData()->GetArray("inside"), nullptr);
+  EXPECT_NE(read_vti(dir / "distance.vti")->GetPointData()->GetArray("distance"), nullptr);
+  EXPECT_NE(read_vtp(dir / "centerline.vtp")->GetPointData()->GetArray("tangent"), nullptr);
+  EXPECT_NE(read_vti(dir / "field.vti")->GetPointData()->GetArray("D"), nullptr);
+  EXPECT_GT(read_vtu(dir / "mesh.vtu")->GetNumberOfCells(), 100);
+  EXPECT_NE(read_vtu(dir / "fibers.vtu")->GetCellData()->GetArray("fiber"), nullptr);
+  EXPECT_GT(read_vtp(dir / "fibers.vtp")->GetNumberOfLines(), 100);
+  auto model = read_vtu(dir / "model.vtu");
+  EXPECT_NE(model->GetCellData()->GetArray("fiber"), nullptr);
+  EXPECT_NE(model->GetPointData()->GetArray("femur_attached"), nullptr);
+  EXPECT_NE(model->GetPointData()->GetArray("tibia_attached"), nullptr);
+  EXPECT_TRUE(fs::exists(dir / "scene.toml"));
+}
+
+/// Every centerline point lies inside the surface (the two extended end points on it), and the
+/// line starts by the femoral attachment and passes by the tibial one.
+void expect_centerline_inside_between_attachments(const fs::path& dir, const TriangleSurface& surface,
+                                                  double near_mm)
+{
+  const SurfaceQuery query(surface);
+  const Points line = io::points_of(read_vtp(dir / "centerline.vtp"));
+  ASSERT_GT(line.rows(), 10);
+  for (Eigen::Index i = 0; i < line.rows(); ++i) {
+    const Eigen::Vector3d p = line.row(i);
+    EXPECT_TRUE(query.inside(p) || query.distance(p) < 1e-3) << "point " << i << " outside";
+  }
+  const nlohmann::json figures = read_summary(dir)["stages"]["centerline"]["figures"];
+  const auto at = [](const nlohmann::json& p) { return Eigen::Vector3d(p[0], p[1], p[2]); };
+  const Eigen::Vector3d femur = at(figures["femoral_attachment_mean_mm"]);
+  const Eigen::Vector3d tibia = at(figures["tibial_attachment_mean_mm"]);
+  double to_femur = 1e9, to_tibia = 1e9;
+  for (Eigen::Index i = 0; i < line.rows(); ++i) {
+    to_femur = std::min(to_femur, (line.row(i).transpose() - femur).norm());
+    to_tibia = std::min(to_tibia, (line.row(i).transpose() - tibia).norm());
+  }
+  EXPECT_LT(to_femur, near_mm);
+  EXPECT_LT(to_tibia, near_mm);
+  // It runs from the femoral end towards the tibial one.
+  EXPECT_LT((line.row(0).transpose() - femur).norm(), (line.row(0).transpose() - tibia).norm());
+}
+
+} // namespace
+
+TEST(Build, SyntheticBandWithCacheReuse)
+{
+  const fs::path shape = fresh_folder("band_shape"), out = fresh_folder("band_model");
+  ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+  const std::string inputs = "--surface " + (shape / "surface.stl").string() + " --femur " +
+                             (shape / "femur.stl").string() + " --tibia " + (shape / "tibia.stl").string() +
+                             " --voxel 0.4 --out " + out.string();
+  const CliResult first = run_ligsim("build " + inputs);
+  ASSERT_EQ(first.exit_code, 0) << first.stderr_text;
+  for (const auto& [name, status] : statuses(read_summary(out)))
+    EXPECT_EQ(status, "ran") << name;
+  expect_readable_outputs(out);
+  expect_centerline_inside_between_attachments(out, io::read_surface(shape / "surface.stl"), 1.0);
+  const nlohmann::json summary = read_summary(out);
+  EXPECT_NE(summary["stages"]["attachments"]["figures"]["femur"]["rule"].get<std::string>().find("proximity"), std::string::npos);
+  EXPECT_GT(summary["stages"]["model"]["figures"]["femur_nodes"].get<int>(), 0);
+  EXPECT_GT(summary["stages"]["model"]["figures"]["tibia_nodes"].get<int>(), 0);
+
+  // Nothing changed: every stage is reused.
+  ASSERT_EQ(run_ligsim("build " + inputs).exit_code, 0);
+  for (const auto& [name, status] : statuses(read_summary(out)))
+    EXPECT_EQ(status, "reused") << name;
+
+  // A centerline parameter changed: it and what follows rerun, the rest is reused.
+  ASSERT_EQ(run_ligsim("build " + inputs + " --alpha 0.5").exit_code, 0);
+  const auto after = statuses(read_summary(out));
+  for (const char* stage : {"attachments", "voxelize", "distance", "tetmesh"})
+    EXPECT_EQ(after.at(stage), "reused") << stage;
+  for (const char* stage : {"centerline", "field", "fibers", "model"})
+    EXPECT_EQ(after.at(stage), "ran") << stage;
+}
+
+TEST(Build, StageSubcommandRunsOnlyWhatItNeeds)
+{
+  const fs::path shape = fresh_folder("cyl_shape"), out = fresh_folder("cyl_distance");
+  ASSERT_EQ(run_ligsim("synth cylinder --out " + shape.string()).exit_code, 0);
+  ASSERT_EQ(run_ligsim("distance --surface " + (shape / "surface.stl").string() + " --out " + out.string()).exit_code, 0);
+  EXPECT_TRUE(fs::exists(out / "distance.vti"));
+  EXPECT_FALSE(fs::exists(out / "mesh.vtu"));
+  EXPECT_EQ(statuses(read_summary(out)).size(), 2u); // voxelize, distance
+}
+
+TEST(Build, RealMclCompletesEveryStage)
+{
+  const fs::path out = fresh_folder("mcl");
+  const CliResult result = run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
+                                      " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  expect_readable_outputs(out);
+  const nlohmann::json summary = read_summary(out);
+  EXPECT_EQ(statuses(summary).size(), 8u);
+  const nlohmann::json& attachments = summary["stages"]["attachments"]["figures"];
+  EXPECT_NE(attachments["tibia"]["rule"].get<std::string>().find("proximity"), std::string::npos);
+  EXPECT_NE(attachments["femur"]["rule"].get<std::string>().find("end"), std::string::npos);
+  EXPECT_EQ(attachments["tibia"]["vertices"].get<int>(), 412); // as the data's README states
+  const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
+  EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
+  EXPECT_GE(mesh["min_dihedral_deg"].get<double>(), 5.0);
+  expect_centerline_inside_between_attachments(
+    out, io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl")), 1.0);
+}

@@ -1,0 +1,42 @@
+#pragma once
+/// Runs the built `ligsim` binary as a user would, capturing its exit code and stderr.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <sys/wait.h>
+
+namespace ligsim::test {
+
+struct CliResult {
+  int exit_code;
+  std::string stderr_text;
+};
+
+inline CliResult run_ligsim(const std::string& arguments)
+{
+  const std::filesystem::path log =
+    std::filesystem::temp_directory_path() / ("ligsim_cli_" + std::to_string(std::rand()) + ".log");
+  const std::string command = std::string(LIGSIM_BINARY) + " " + arguments + " 2> " + log.string() + " > /dev/null";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::filesystem::remove(log);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+inline std::filesystem::path fresh_folder(const std::string& name)
+{
+  const auto dir = std::filesystem::temp_directory_path() / ("ligsim_pipeline_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+inline std::filesystem::path source_path(const std::string& relative)
+{
+  return std::filesystem::path(LIGSIM_SOURCE_DIR) / relative;
+}
+
+} // namespace ligsim::test
