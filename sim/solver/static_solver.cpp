@@ -78,6 +78,7 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
   const Points& V = body.mesh().V;
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
+  m_energy_unit = body.material().parameters().mu_mpa * body.rest_volume();
 }
 
 Eigen::VectorXd StaticSolver::free_part(const Eigen::VectorXd& full) const
@@ -234,8 +235,10 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport&
     const double slope = residual.dot(direction); // < 0
 
     // Backtracking line search on the total energy.
+    // Round-off in the element sum scales with the material's energy per volume, even where
+    // the strain energy itself is near zero (rigid motions).
     const double energy_scale = std::abs(current.body.energy) +
-                                std::abs(t1 * m_external.dot(x - m_rest)) + m_force_floor;
+                                std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
     double alpha = 1.0;
     bool accepted = false;
     Evaluation trial;

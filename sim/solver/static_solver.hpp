@@ -115,6 +115,7 @@ private:
   StiffnessSolver m_linear;
   std::vector<int> m_boundary_elements; ///< elements with a prescribed DOF
   double m_force_floor = 0.0;           ///< absolute residual below which any state converges
+  double m_energy_unit = 0.0;           ///< mu V: the scale of energy round-off, N mm
   std::string m_failure;
 };
 

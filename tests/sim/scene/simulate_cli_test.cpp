@@ -1,0 +1,89 @@
+// End to end: the ligsim binary on the shipped example scenes and on bad input.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int exit_code = 0;
+  std::string stderr_text;
+};
+
+CliRun run_ligsim(const std::string& arguments)
+{
+  const fs::path log = fs::temp_directory_path() / "ligsim_cli_test.log";
+  const std::string command =
+      std::string(LIGSIM_BINARY) + " -q " + arguments + " 2> " + log.string();
+  CliRun run;
+  const int status = std::system(command.c_str());
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.stderr_text = text.str();
+  return run;
+}
+
+nlohmann::json read_json(const fs::path& file)
+{
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+} // namespace
+
+TEST(SimulateCli, CubeTensionSceneWritesItsOutputs)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_cli_cube";
+  fs::remove_all(out);
+  const CliRun run = run_ligsim("simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-tension.toml --out " +
+                             out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
+  EXPECT_TRUE(fs::exists(out / "series.pvd"));
+  EXPECT_TRUE(fs::exists(out / "step_0005.vtu"));
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_TRUE(summary["results"]["success"].get<bool>());
+  const auto& last = summary["results"]["steps"].back();
+  // 81 top nodes at 0.05 N: the bottom carries 4.05 N.
+  EXPECT_NEAR(last["reactions"]["bottom"]["force_n"][2].get<double>(), -4.05, 1e-6);
+  EXPECT_TRUE(summary["stages"]["solve"].contains("peak_rss_mib"));
+}
+
+TEST(SimulateCli, DynamicSceneComesToRest)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_cli_dynamic";
+  fs::remove_all(out);
+  const CliRun run = run_ligsim("simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-dynamic.toml --out " +
+                             out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_TRUE(summary["stages"]["solve"]["reached_equilibrium"].get<bool>());
+}
+
+TEST(SimulateCli, BadSceneIsOneLineErrorAndNoOutput)
+{
+  const fs::path scene = fs::temp_directory_path() / "ligsim_cli_bad.toml";
+  {
+    std::ofstream out(scene);
+    out << "[mesh]\ngenerator = \"cube\"\n[node_sets]\nb = { plane = { axis = \"w\", at_mm = 0 } "
+           "}\n";
+  }
+  const fs::path out = fs::temp_directory_path() / "ligsim_cli_bad_out";
+  fs::remove_all(out);
+  const CliRun run = run_ligsim("simulate " + scene.string() + " --out " + out.string());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.stderr_text.rfind("ligsim: error: ", 0), 0u) << run.stderr_text;
+  EXPECT_NE(run.stderr_text.find("axis"), std::string::npos) << run.stderr_text;
+  EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1);
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+}

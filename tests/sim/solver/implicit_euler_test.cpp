@@ -1,0 +1,121 @@
+#include "sim/mesh/node_selection.hpp"
+#include "sim/mesh/structured_mesh.hpp"
+#include "sim/solver/implicit_euler.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ligsim::sim;
+
+namespace {
+
+struct Cube {
+  ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  BoundaryConditions conditions;
+
+  Cube()
+  {
+    ConstraintSet bottom;
+    bottom.name = "bottom";
+    bottom.nodes = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
+    conditions.constraints.push_back(bottom);
+    NodalLoad load;
+    load.name = "top";
+    load.nodes = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
+    load.force_per_node_n = Eigen::Vector3d(0, 0, 0.2);
+    conditions.loads.push_back(load);
+  }
+};
+
+FiberField along_z()
+{
+  FiberField fiber(1, 3);
+  fiber << 0, 0, 1;
+  return fiber;
+}
+
+} // namespace
+
+TEST(ImplicitEuler, LumpedMassesAddUpToTheBodyMass)
+{
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  DynamicsSettings settings;
+  settings.density_kg_m3 = 1100.0;
+  const ImplicitEuler solver(body, cube.conditions, settings);
+  // 1 mm^3 of 1100 kg/m^3 is 1.1e-9 t in each of the three components.
+  EXPECT_NEAR(solver.masses().sum(), 3 * 1.1e-9, 1e-20);
+}
+
+TEST(ImplicitEuler, ComesToRestAtTheStaticEquilibrium)
+{
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  for (LinearSolverKind kind : {LinearSolverKind::pcg, LinearSolverKind::direct}) {
+    DynamicsSettings settings;
+    settings.time_step_s = 1e-4;
+    settings.frames = 500;
+    settings.until_converged = true;
+    settings.convergence_tolerance = 1e-9;
+    settings.mass_damping_per_s = 1000.0;
+    settings.linear_solver = kind;
+    settings.pcg.tolerance = 1e-10;
+    ImplicitEuler dynamic(body, cube.conditions, settings);
+    Eigen::VectorXd x_dynamic = body.rest_positions();
+    const DynamicResult result = dynamic.run(x_dynamic);
+    ASSERT_TRUE(result.completed) << result.failure;
+    EXPECT_TRUE(result.reached_equilibrium);
+
+    StaticSolver quasi_static(body, cube.conditions, NewtonSettings{});
+    Eigen::VectorXd x_static = body.rest_positions();
+    ASSERT_TRUE(quasi_static.solve(x_static).converged);
+    EXPECT_LT((x_dynamic - x_static).lpNorm<Eigen::Infinity>(), 1e-8) << to_string(kind);
+  }
+}
+
+TEST(ImplicitEuler, HugeTimeStepsStayFiniteAndUninverted)
+{
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  DynamicsSettings settings;
+  settings.time_step_s = 1.0;
+  settings.frames = 10;
+  settings.ramp_frames = 5;
+  ImplicitEuler solver(body, cube.conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  double worst_j = 1.0;
+  const DynamicResult result = solver.run(
+      x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+        worst_j = std::min(worst_j, frame.min_j);
+      });
+  ASSERT_TRUE(result.completed) << result.failure;
+  EXPECT_TRUE(x.allFinite());
+  EXPECT_GT(worst_j, 0.5);
+}
+
+TEST(ImplicitEuler, PrescribedRigidMotionIsFollowed)
+{
+  Cube cube;
+  cube.conditions.loads.clear();
+  ConstraintSet top;
+  top.name = "top";
+  top.nodes = nodes_on_plane(cube.mesh.V, 2, 1.0, 1e-9);
+  RigidMotion motion;
+  motion.axis = Eigen::Vector3d::UnitY();
+  motion.point_mm = Eigen::Vector3d(0.5, 0.5, 0.0);
+  motion.angle_rad = 0.1;
+  top.rigid = motion;
+  cube.conditions.constraints.push_back(top);
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  DynamicsSettings settings;
+  settings.time_step_s = 1e-3;
+  settings.frames = 20;
+  settings.ramp_frames = 10;
+  settings.mass_damping_per_s = 100.0;
+  ImplicitEuler solver(body, cube.conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  ASSERT_TRUE(solver.run(x).completed);
+  for (int node : top.nodes)
+    EXPECT_LT((x.segment<3>(3 * node) - motion.apply(cube.mesh.V.row(node).transpose(), 1.0)).norm(),
+              1e-12);
+}

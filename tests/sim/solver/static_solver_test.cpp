@@ -1,0 +1,165 @@
+#include "common/error.hpp"
+#include "sim/mesh/node_selection.hpp"
+#include "sim/mesh/structured_mesh.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+using namespace ligsim::sim;
+
+namespace {
+
+FiberField along_z()
+{
+  FiberField fiber(1, 3);
+  fiber << 0, 0, 1;
+  return fiber;
+}
+
+/// Unit cube, bottom fixed, `per_node_n` on every top node.
+BoundaryConditions tension(const ligsim::TetMesh& mesh, const Eigen::Vector3d& per_node_n)
+{
+  BoundaryConditions conditions;
+  ConstraintSet bottom;
+  bottom.name = "bottom";
+  bottom.nodes = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
+  conditions.constraints.push_back(bottom);
+  NodalLoad load;
+  load.name = "top";
+  load.nodes = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
+  load.force_per_node_n = per_node_n;
+  conditions.loads.push_back(load);
+  return conditions;
+}
+
+struct Solved {
+  StaticResult result;
+  Eigen::VectorXd x;
+  Eigen::VectorXd residual;
+};
+
+Solved solve(const HyperelasticBody& body, const BoundaryConditions& conditions,
+             const NewtonSettings& settings)
+{
+  StaticSolver solver(body, conditions, settings);
+  Solved solved;
+  solved.x = body.rest_positions();
+  solved.result = solver.solve(solved.x, [&](const StepReport&, const Eigen::VectorXd&,
+                                             const Eigen::VectorXd& r) { solved.residual = r; });
+  return solved;
+}
+
+} // namespace
+
+TEST(StaticSolver, ReactionsBalanceTheLoad)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(4, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = tension(mesh, {0.01, 0.0, 0.2});
+  const Solved solved = solve(body, conditions, NewtonSettings{});
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
+  const Eigen::Vector3d applied = 25.0 * Eigen::Vector3d(0.01, 0.0, 0.2);
+  const Eigen::Vector3d reaction = reaction_forces(conditions, solved.residual)[0];
+  EXPECT_LT((reaction + applied).norm(), 1e-7 * applied.norm());
+  EXPECT_GT(solved.result.steps.back().strain_energy_mj, 0.0);
+}
+
+TEST(StaticSolver, DirectAndPcgFindTheSameEquilibrium)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 0.3});
+  NewtonSettings settings;
+  settings.load_steps = 2;
+  const Solved direct = solve(body, conditions, settings);
+  settings.linear_solver = LinearSolverKind::pcg;
+  settings.pcg.tolerance = 1e-10;
+  const Solved pcg = solve(body, conditions, settings);
+  ASSERT_TRUE(direct.result.converged && pcg.result.converged);
+  EXPECT_GT(pcg.result.linear_iterations, 0);
+  EXPECT_LT((direct.x - pcg.x).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+TEST(StaticSolver, RigidMotionOfTheWholeBoundaryCostsNoEnergy)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  BoundaryConditions conditions;
+  ConstraintSet surface;
+  surface.name = "surface";
+  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
+    const Eigen::Vector3d p = mesh.V.row(n);
+    if ((p.array() < 1e-9).any() || (p.array() > 1 - 1e-9).any())
+      surface.nodes.push_back(static_cast<int>(n));
+  }
+  RigidMotion motion;
+  motion.axis = Eigen::Vector3d(1, 1, 0).normalized();
+  motion.point_mm = Eigen::Vector3d(2, 0, 0);
+  motion.angle_rad = 1.5;
+  motion.translation_mm = Eigen::Vector3d(0.5, -1, 2);
+  surface.rigid = motion;
+  conditions.constraints.push_back(surface);
+  NewtonSettings settings;
+  settings.load_steps = 6;
+  const Solved solved = solve(body, conditions, settings);
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
+  EXPECT_LT(solved.result.steps.back().strain_energy_mj, 1e-12);
+  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
+    const Eigen::Vector3d expected = motion.apply(mesh.V.row(n).transpose(), 1.0);
+    EXPECT_LT((solved.x.segment<3>(3 * n) - expected).norm(), 1e-8) << "node " << n;
+  }
+}
+
+TEST(StaticSolver, CutsBackALoadStepThatFails)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 3.0});
+  NewtonSettings settings;
+  settings.load_steps = 1;
+  settings.max_iterations = 4; // too few for the full load at once
+  const Solved solved = solve(body, conditions, settings);
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
+  EXPECT_GT(solved.result.cutbacks, 0);
+  EXPECT_GT(solved.result.steps.back().substeps, 1);
+}
+
+TEST(StaticSolver, ReportsFailureWithTheLastGoodState)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 20.0});
+  NewtonSettings settings;
+  settings.load_steps = 1;
+  settings.max_iterations = 1;
+  settings.max_cutbacks = 1;
+  const Solved solved = solve(body, conditions, settings);
+  EXPECT_FALSE(solved.result.converged);
+  EXPECT_NE(solved.result.failure.find("cut-backs"), std::string::npos) << solved.result.failure;
+  EXPECT_TRUE(solved.x.isApprox(body.rest_positions()));
+}
+
+TEST(StaticSolver, NodesWithoutElementsAreHeldFixed)
+{
+  ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
+  mesh.V.conservativeResize(mesh.V.rows() + 1, 3);
+  mesh.V.row(mesh.V.rows() - 1) << 5.0, 5.0, 5.0;
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  EXPECT_TRUE(body.unreferenced_nodes().back());
+  const Solved solved = solve(body, tension(mesh, {0, 0, 0.1}), NewtonSettings{});
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
+  EXPECT_EQ(solved.x.tail<3>(), Eigen::Vector3d(5, 5, 5));
+}
+
+TEST(StaticSolver, ConflictingConstraintsAreRejected)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
+  BoundaryConditions conditions = tension(mesh, {0, 0, 0.1});
+  ConstraintSet again = conditions.constraints[0];
+  again.name = "again";
+  again.displacement_mm = Eigen::Vector3d(0, 0, 0.1);
+  conditions.constraints.push_back(again);
+  EXPECT_THROW(DofPartition(static_cast<int>(mesh.V.rows()), conditions, {}),
+               ligsim::InputError);
+}
