@@ -186,6 +186,9 @@ BuildConfig load_build_config(const fs::path& file)
 
   Section centerline(table_at(&root, "centerline"), "centerline", file);
   centerline.read("alpha", config.centerline.alpha);
+  std::string span = centerline::to_string(config.centerline.span);
+  centerline.read("span", span);
+  config.centerline.span = centerline::parse_span(span);
   centerline.read("refine", config.centerline.refine);
   centerline.read("relax_iterations", config.centerline.relax_iterations);
   centerline.read("extend_to_surface", config.centerline.extend_to_surface);
@@ -266,6 +269,7 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
             {"max_voxels", c.voxelize.max_voxels}};
   if (stage == "centerline")
     return {{"alpha", c.centerline.alpha},
+            {"span", centerline::to_string(c.centerline.span)},
             {"refine", c.centerline.refine},
             {"relax_iterations", c.centerline.relax_iterations},
             {"extend_to_surface", c.centerline.extend_to_surface},

@@ -24,12 +24,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Eigen::Vector3d mean_of(const TriangleSurface& surface, const std::vector<int>& vertices)
+Points positions(const TriangleSurface& surface, const std::vector<int>& vertices)
 {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int v : vertices)
-    sum += surface.V.row(v).transpose();
-  return sum / static_cast<double>(vertices.size());
+  Points points(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    points.row(static_cast<Eigen::Index>(i)) = surface.V.row(vertices[i]);
+  return points;
 }
 
 nlohmann::json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
@@ -69,15 +69,17 @@ nlohmann::json run_centerline(const BuildConfig& config, const fs::path& dir)
   if (areas.femur.empty() || areas.tibia.empty())
     fail("'{}' marks no {} attachment vertex", (dir / files::attachments).string(),
          areas.femur.empty() ? "femoral" : "tibial");
-  const Eigen::Vector3d start = mean_of(ligament, areas.femur);
-  const Eigen::Vector3d end = mean_of(ligament, areas.tibia);
+  const Points femur = positions(ligament, areas.femur), tibia = positions(ligament, areas.tibia);
+  const Eigen::Vector3d start = femur.colwise().mean().transpose();
+  const Eigen::Vector3d end = tibia.colwise().mean().transpose();
   const centerline::Centerline line =
-    centerline::extract(load_mask(dir), load_distance(dir), start, end, config.centerline);
+    centerline::extract(load_mask(dir), load_distance(dir), femur, tibia, config.centerline);
 
   auto polydata = io::polyline_to_polydata(line.points);
   io::add_array(polydata->GetPointData(), "tangent", line.tangents);
   write_vtk(polydata, dir / files::centerline);
-  return {{"points", line.points.rows()},
+  return {{"span", centerline::to_string(config.centerline.span)},
+          {"points", line.points.rows()},
           {"length_mm", line.length_mm},
           {"voxel_path_steps", line.voxel_path.size()},
           {"voxel_path_cost", line.path_cost},

@@ -51,23 +51,135 @@ CostModel cost_model(const ScalarGrid& distance, double alpha)
   return {alpha, d_max, kMinDistanceVoxels * distance.spacing};
 }
 
-/// The inside voxel whose centre is nearest `p`.
+/// The inside voxel whose centre is nearest `p`: searched in growing cubes around p's voxel
+/// (points on or near the surface find one within a few voxels), else over the whole image.
 std::size_t nearest_inside(const Mask& mask, const Eigen::Vector3d& p)
 {
   std::size_t best = mask.values.size();
   double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t v = 0; v < mask.values.size(); ++v)
-    if (mask.values[v]) {
-      const double d = (mask.point(v) - p).squaredNorm();
-      if (d < best_d) {
-        best_d = d;
-        best = v;
-      }
+  auto consider = [&](std::size_t v) {
+    if (!mask.values[v])
+      return;
+    const double d = (mask.point(v) - p).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = v;
     }
+  };
+  const Eigen::Vector3i c = mask.voxel_coordinates(p).array().round().cast<int>();
+  for (int r = 1; r <= 4 && best == mask.values.size(); ++r) {
+    // A voxel found within radius r may still lose to one in radius r + 1: search one more.
+    for (int rr = r; rr <= r + 1; ++rr)
+      for (int k = c.z() - rr; k <= c.z() + rr; ++k)
+        for (int j = c.y() - rr; j <= c.y() + rr; ++j)
+          for (int i = c.x() - rr; i <= c.x() + rr; ++i)
+            if (mask.contains(i, j, k))
+              consider(mask.index(i, j, k));
+  }
+  if (best == mask.values.size())
+    for (std::size_t v = 0; v < mask.values.size(); ++v)
+      consider(v);
   if (best == mask.values.size())
     fail("the voxel image has no inside voxel");
   return best;
 }
+
+std::vector<std::size_t> nearest_inside_voxels(const Mask& mask, const Points& points)
+{
+  std::vector<std::size_t> voxels;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    voxels.push_back(nearest_inside(mask, points.row(i).transpose()));
+  std::sort(voxels.begin(), voxels.end());
+  voxels.erase(std::unique(voxels.begin(), voxels.end()), voxels.end());
+  return voxels;
+}
+
+/// Dijkstra's result from one source: predecessor and cost per graph node.
+struct ShortestPaths {
+  VertexIndex source;
+  std::vector<VertexIndex> predecessor;
+  std::vector<float> cost;
+  bool reaches(VertexIndex node) const { return node == source || predecessor[node] != node; }
+};
+
+/// The inside voxels as a graph with the 26-neighbourhood and eq. 25's step costs.
+class VoxelGraph {
+public:
+  VoxelGraph(const Mask& mask, const ScalarGrid& distance, const CostModel& model)
+    : m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
+  {
+    for (std::size_t v = 0; v < mask.values.size(); ++v)
+      if (mask.values[v]) {
+        m_node_of[v] = static_cast<VertexIndex>(m_voxel_of.size());
+        m_voxel_of.push_back(v);
+      }
+    // Edges in source order, as the CSR constructor wants them.
+    std::vector<std::pair<VertexIndex, VertexIndex>> edges;
+    std::vector<EdgeWeight> weights;
+    edges.reserve(m_voxel_of.size() * 26);
+    weights.reserve(m_voxel_of.size() * 26);
+    for (std::size_t node = 0; node < m_voxel_of.size(); ++node) {
+      const Eigen::Vector3i a = mask.ijk(m_voxel_of[node]);
+      const double d_a = distance.values[m_voxel_of[node]];
+      for (const Eigen::Vector3i& offset : neighbourhood_26()) {
+        const Eigen::Vector3i b = a + offset;
+        if (!mask.contains(b.x(), b.y(), b.z()) || !mask(b.x(), b.y(), b.z()))
+          continue;
+        const std::size_t voxel_b = mask.index(b.x(), b.y(), b.z());
+        const double length = mask.spacing * offset.cast<double>().norm();
+        edges.emplace_back(static_cast<VertexIndex>(node), m_node_of[voxel_b]);
+        weights.push_back({static_cast<float>(model.step(length, d_a, distance.values[voxel_b]))});
+      }
+    }
+    m_graph = Graph(boost::edges_are_sorted, edges.begin(), edges.end(), weights.begin(),
+                    static_cast<VertexIndex>(m_voxel_of.size()));
+  }
+
+  VertexIndex node(std::size_t voxel) const { return m_node_of[voxel]; }
+
+  ShortestPaths shortest_paths(std::size_t source_voxel) const
+  {
+    ShortestPaths result{node(source_voxel), std::vector<VertexIndex>(m_voxel_of.size()),
+                         std::vector<float>(m_voxel_of.size())};
+    const auto index = boost::get(boost::vertex_index, m_graph);
+    boost::dijkstra_shortest_paths(
+      m_graph, result.source,
+      boost::predecessor_map(boost::make_iterator_property_map(result.predecessor.begin(), index))
+        .distance_map(boost::make_iterator_property_map(result.cost.begin(), index))
+        .weight_map(boost::get(&EdgeWeight::weight, m_graph)));
+    return result;
+  }
+
+  /// Among `voxels`, the reachable one of largest path cost.
+  std::size_t farthest(const ShortestPaths& paths, const std::vector<std::size_t>& voxels) const
+  {
+    std::size_t best = voxels.front();
+    float best_cost = -1.0f;
+    for (std::size_t voxel : voxels)
+      if (paths.reaches(node(voxel)) && paths.cost[node(voxel)] > best_cost) {
+        best_cost = paths.cost[node(voxel)];
+        best = voxel;
+      }
+    return best;
+  }
+
+  /// The voxels from `voxel` back to the source of `paths`, both included.
+  std::vector<std::size_t> path_to_source(const ShortestPaths& paths, std::size_t voxel) const
+  {
+    std::vector<std::size_t> result;
+    for (VertexIndex n = node(voxel);; n = paths.predecessor[n]) {
+      result.push_back(m_voxel_of[n]);
+      if (n == paths.source)
+        break;
+    }
+    return result;
+  }
+
+private:
+  std::vector<VertexIndex> m_node_of;
+  std::vector<std::size_t> m_voxel_of;
+  Graph m_graph;
+};
 
 double segment_cost(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const ScalarGrid& distance,
                     const CostModel& model, bool* leaves_shape = nullptr)
@@ -240,6 +352,17 @@ void extend_end(std::vector<Eigen::Vector3d>& line, const ScalarGrid& distance, 
 
 } // namespace
 
+Span parse_span(const std::string& name)
+{
+  if (name == "means")
+    return Span::means;
+  if (name == "attachments")
+    return Span::attachments;
+  fail("unknown centerline span '{}' (use 'means' or 'attachments')", name);
+}
+
+std::string to_string(Span span) { return span == Span::means ? "means" : "attachments"; }
+
 double path_cost(const Points& points, const ScalarGrid& distance, double alpha)
 {
   const CostModel model = cost_model(distance, alpha);
@@ -249,80 +372,54 @@ double path_cost(const Points& points, const ScalarGrid& distance, double alpha)
   return cost;
 }
 
-Centerline extract(const Mask& mask, const ScalarGrid& distance, const Eigen::Vector3d& start,
-                   const Eigen::Vector3d& end, const Parameters& parameters)
+Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& start_area,
+                   const Points& end_area, const Parameters& parameters)
 {
   if (!(parameters.alpha >= 0.0 && parameters.alpha <= 1.0))
     fail("centerline alpha must lie in [0, 1], got {}", parameters.alpha);
+  if (start_area.rows() == 0 || end_area.rows() == 0)
+    fail("the centerline needs two non-empty attachment areas");
   const CostModel model = cost_model(distance, parameters.alpha);
+  const VoxelGraph graph(mask, distance, model);
 
-  // Graph nodes: the inside voxels, numbered in storage order.
-  std::vector<VertexIndex> node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max());
-  std::vector<std::size_t> voxel_of;
-  for (std::size_t v = 0; v < mask.values.size(); ++v)
-    if (mask.values[v]) {
-      node_of[v] = static_cast<VertexIndex>(voxel_of.size());
-      voxel_of.push_back(v);
-    }
-
-  // Edges in source order, as the CSR constructor wants them.
-  std::vector<std::pair<VertexIndex, VertexIndex>> edges;
-  std::vector<EdgeWeight> weights;
-  edges.reserve(voxel_of.size() * 26);
-  weights.reserve(voxel_of.size() * 26);
-  for (std::size_t node = 0; node < voxel_of.size(); ++node) {
-    const Eigen::Vector3i a = mask.ijk(voxel_of[node]);
-    const double d_a = distance.values[voxel_of[node]];
-    for (const Eigen::Vector3i& offset : neighbourhood_26()) {
-      const Eigen::Vector3i b = a + offset;
-      if (!mask.contains(b.x(), b.y(), b.z()) || !mask(b.x(), b.y(), b.z()))
-        continue;
-      const std::size_t voxel_b = mask.index(b.x(), b.y(), b.z());
-      const double length = mask.spacing * offset.cast<double>().norm();
-      edges.emplace_back(static_cast<VertexIndex>(node), node_of[voxel_b]);
-      weights.push_back({static_cast<float>(model.step(length, d_a, distance.values[voxel_b]))});
-    }
-  }
-  const Graph graph(boost::edges_are_sorted, edges.begin(), edges.end(), weights.begin(),
-                    static_cast<VertexIndex>(voxel_of.size()));
-  edges.clear();
-  edges.shrink_to_fit();
-
-  const std::size_t start_voxel = nearest_inside(mask, start);
-  const std::size_t end_voxel = nearest_inside(mask, end);
+  std::size_t start_voxel = nearest_inside(mask, start_area.colwise().mean().transpose());
+  std::size_t end_voxel = nearest_inside(mask, end_area.colwise().mean().transpose());
   if (start_voxel == end_voxel)
     fail("the two attachment areas map to the same voxel: no centerline between them");
-
-  std::vector<VertexIndex> predecessor(voxel_of.size());
-  std::vector<float> cost(voxel_of.size());
-  const auto index = boost::get(boost::vertex_index, graph);
-  boost::dijkstra_shortest_paths(
-    graph, node_of[start_voxel],
-    boost::predecessor_map(boost::make_iterator_property_map(predecessor.begin(), index))
-      .distance_map(boost::make_iterator_property_map(cost.begin(), index))
-      .weight_map(boost::get(&EdgeWeight::weight, graph)));
-
-  const VertexIndex target = node_of[end_voxel];
-  if (predecessor[target] == target)
+  const ShortestPaths from_start = graph.shortest_paths(start_voxel);
+  if (!from_start.reaches(graph.node(end_voxel)))
     fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
          "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of the "
          "voxel image (try a smaller voxel spacing)",
          mask.point(start_voxel).x(), mask.point(start_voxel).y(), mask.point(start_voxel).z(),
          mask.point(end_voxel).x(), mask.point(end_voxel).y(), mask.point(end_voxel).z());
 
+  // Voxel path from the start to the end, in order.
+  std::vector<std::size_t> voxels;
+  float path_cost = 0.0f;
+  if (parameters.span == Span::attachments) {
+    // Through the whole areas: the end is the end area's voxel farthest (in path cost) from the
+    // start; the start is the start area's voxel farthest from that end.
+    end_voxel = graph.farthest(from_start, nearest_inside_voxels(mask, end_area));
+    const ShortestPaths from_end = graph.shortest_paths(end_voxel);
+    start_voxel = graph.farthest(from_end, nearest_inside_voxels(mask, start_area));
+    voxels = graph.path_to_source(from_end, start_voxel);
+    path_cost = from_end.cost[graph.node(start_voxel)];
+  } else {
+    voxels = graph.path_to_source(from_start, end_voxel);
+    std::reverse(voxels.begin(), voxels.end());
+    path_cost = from_start.cost[graph.node(end_voxel)];
+  }
+
   Centerline result;
   result.start_voxel = mask.ijk(start_voxel);
   result.end_voxel = mask.ijk(end_voxel);
-  result.path_cost = cost[target];
+  result.path_cost = path_cost;
   std::vector<Eigen::Vector3d> path;
-  for (VertexIndex node = target;; node = predecessor[node]) {
-    result.voxel_path.push_back(mask.ijk(voxel_of[node]));
-    path.push_back(mask.point(voxel_of[node]));
-    if (node == node_of[start_voxel])
-      break;
+  for (std::size_t voxel : voxels) {
+    result.voxel_path.push_back(mask.ijk(voxel));
+    path.push_back(mask.point(voxel));
   }
-  std::reverse(result.voxel_path.begin(), result.voxel_path.end());
-  std::reverse(path.begin(), path.end());
 
   if (parameters.refine && path.size() > 2)
     path = pull_string(path, distance, model);

@@ -6,11 +6,26 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace ligsim::centerline {
 
+/// Which stretch of the ligament the centerline spans.
+enum class Span {
+  /// The paper's: from the voxel nearest the mean of A1 to the one nearest the mean of A2.
+  means,
+  /// Through the whole attachment areas: from the A1 voxel farthest (in path cost) from the
+  /// A2 end to the A2 voxel farthest from the A1 mean, so the line also runs along a long
+  /// insertion (the MCL's tibial one) instead of stopping at its middle.
+  attachments,
+};
+
+Span parse_span(const std::string& name);
+std::string to_string(Span span);
+
 struct Parameters {
+  Span span = Span::means;
   /// Weight of the medial term: 0 gives the shortest path, 1 the path farthest from the surface.
   double alpha = 0.1;
   /// Refine the voxel path towards the continuous minimum of eq. 25: straighten it where a
@@ -38,13 +53,14 @@ struct Centerline {
 };
 
 /// Minimal-cost path over the inside voxels of `mask` (26-neighbourhood, Boost.Graph Dijkstra)
-/// from the inside voxel nearest `start` to the one nearest `end`. A step from voxel a to b
+/// between the attachment areas `start_area` (A1) and `end_area` (A2), #points x 3, mm, chosen
+/// by `parameters.span`. A step from voxel a to b
 /// costs |dP| (alpha (1/dn_a^2 + 1/dn_b^2)/2 + (1 - alpha)) with dn = d / d_max: the distance
 /// is scaled by the largest inside distance, so the cost does not depend on the unit or the
 /// size of the shape, and alpha means the same on a 3 mm and a 30 mm thick structure.
 /// Throws InputError if the two voxels are not connected inside the mask.
-Centerline extract(const Mask& mask, const ScalarGrid& distance, const Eigen::Vector3d& start,
-                   const Eigen::Vector3d& end, const Parameters& parameters);
+Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& start_area,
+                   const Points& end_area, const Parameters& parameters);
 
 /// Eq. 25 integrated along a polyline, with d interpolated from `distance` (scaled as above).
 double path_cost(const Points& points, const ScalarGrid& distance, double alpha);

@@ -19,19 +19,26 @@ TriangleSurface sweep(const Axis& axis, const Eigen::Vector3d& binormal_hint,
                       const std::vector<Eigen::Vector2d>& section, int rings)
 {
   const int n = static_cast<int>(section.size());
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& p : section)
+    centroid += p / n;
   TriangleSurface surface;
   surface.V.resize(rings * n + 2, 3);
-  for (int r = 0; r < rings; ++r) {
-    const double u = static_cast<double>(r) / (rings - 1);
+  auto place = [&](double u, const Eigen::Vector2d& p) -> Eigen::Vector3d {
     const Eigen::Vector3d t = axis.tangent(u);
     const Eigen::Vector3d b = (binormal_hint - binormal_hint.dot(t) * t).normalized();
     const Eigen::Vector3d nrm = b.cross(t);
+    return axis.point(u) + p.x() * nrm + p.y() * b;
+  };
+  for (int r = 0; r < rings; ++r) {
+    const double u = static_cast<double>(r) / (rings - 1);
     for (int k = 0; k < n; ++k)
-      surface.V.row(r * n + k) = axis.point(u) + section[k].x() * nrm + section[k].y() * b;
+      surface.V.row(r * n + k) = place(u, section[k]).transpose();
   }
+  // The end fans meet at the section's centroid (inside a convex section).
   const int start_centre = rings * n, end_centre = rings * n + 1;
-  surface.V.row(start_centre) = axis.point(0.0);
-  surface.V.row(end_centre) = axis.point(1.0);
+  surface.V.row(start_centre) = place(0.0, centroid).transpose();
+  surface.V.row(end_centre) = place(1.0, centroid).transpose();
 
   std::vector<Eigen::Vector3i> faces;
   for (int r = 0; r + 1 < rings; ++r)
@@ -63,19 +70,28 @@ std::vector<Eigen::Vector2d> circle(double radius, int segments)
   return points;
 }
 
-/// A rectangle with rounded corners, counter-clockwise, centred at the origin.
+/// A rectangle with rounded corners, counter-clockwise, centred at the origin, its straight
+/// sides split into pieces no longer than `step`.
 std::vector<Eigen::Vector2d> rounded_rectangle(double width, double height, double corner,
-                                               int corner_segments)
+                                               int corner_segments, double step)
 {
   const Eigen::Vector2d half(width / 2 - corner, height / 2 - corner);
   const Eigen::Vector2d centres[4] = {
     {half.x(), half.y()}, {-half.x(), half.y()}, {-half.x(), -half.y()}, {half.x(), -half.y()}};
   std::vector<Eigen::Vector2d> points;
-  for (int c = 0; c < 4; ++c)
+  for (int c = 0; c < 4; ++c) {
     for (int k = 0; k <= corner_segments; ++k) {
       const double phi = kPi / 2 * (c + static_cast<double>(k) / corner_segments);
       points.push_back(centres[c] + corner * Eigen::Vector2d(std::cos(phi), std::sin(phi)));
     }
+    // The straight side to the next corner, without its end points.
+    const double phi = kPi / 2 * (c + 1);
+    const Eigen::Vector2d from = points.back();
+    const Eigen::Vector2d to = centres[(c + 1) % 4] + corner * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    const int pieces = std::max(1, static_cast<int>(std::ceil((to - from).norm() / step)));
+    for (int k = 1; k < pieces; ++k)
+      points.push_back(from + (to - from) * (static_cast<double>(k) / pieces));
+  }
   return points;
 }
 
@@ -131,19 +147,26 @@ Shape ligament_band(double length_mm, double width_mm, double thickness_mm)
     return Eigen::Vector3d(-std::sin(phi), 0, std::cos(phi));
   };
   // Section: thickness along x (the bow's normal), width along y.
-  auto section = rounded_rectangle(thickness_mm, width_mm, 0.4 * thickness_mm, 6);
   const double step = std::min(1.0, thickness_mm / 3);
+  auto section = rounded_rectangle(thickness_mm, width_mm, 0.4 * thickness_mm, 6, step);
   shape.surface =
     sweep(shape.axis, Eigen::Vector3d::UnitY(), section, rings_for(shape.axis.length_mm, step));
 
-  // Bone proxies: the femur caps the proximal end (touching it); the tibia runs beside the
-  // distal quarter of the band on its inner (-x) side, 0.3 mm away.
+  // Bone proxies. The femur caps the proximal end, 0.2 mm above it. The tibia is a 10 mm thick
+  // slab hugging the inner (concave) side of the distal quarter, 0.3 mm away, as the MCL's long
+  // tibial insertion lies on the tibia.
   const Eigen::Vector3d top = shape.axis.point(1.0);
   shape.femur = box(top + Eigen::Vector3d(-15, -20, 0.2), top + Eigen::Vector3d(15, 20, 30));
-  const Eigen::Vector3d low = shape.axis.point(0.0);
-  const double inner_x = low.x() - thickness_mm / 2 - 0.3;
-  shape.tibia = box(Eigen::Vector3d(inner_x - 30, -20, low.z() - 30),
-                    Eigen::Vector3d(inner_x, 20, low.z() + 0.25 * length_mm));
+  Axis distal;
+  distal.point = [axis = shape.axis](double u) { return axis.point(0.25 * u); };
+  distal.tangent = [axis = shape.axis](double u) { return axis.tangent(0.25 * u); };
+  distal.length_mm = 0.25 * shape.axis.length_mm;
+  const double gap = 0.3, depth = 10.0;
+  std::vector<Eigen::Vector2d> slab;
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(-thickness_mm / 2 - gap, -width_mm), Eigen::Vector2d(-thickness_mm / 2 - gap, width_mm),
+                                        Eigen::Vector2d(-thickness_mm / 2 - gap - depth, width_mm), Eigen::Vector2d(-thickness_mm / 2 - gap - depth, -width_mm)})
+    slab.push_back(corner);
+  shape.tibia = sweep(distal, Eigen::Vector3d::UnitY(), slab, rings_for(distal.length_mm, 1.0));
   return shape;
 }
 

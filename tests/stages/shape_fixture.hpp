@@ -68,6 +68,9 @@ inline double distance_to_axis(const synthetic::Axis& axis, const Eigen::Vector3
   return best;
 }
 
+/// One point as a 1 x 3 point list (an attachment area of one point).
+inline Points as_points(const Eigen::Vector3d& p) { return p.transpose(); }
+
 /// The shape's true axis as a polyline with `count` points.
 inline Polyline axis_polyline(const synthetic::Axis& axis, int count = 400)
 {

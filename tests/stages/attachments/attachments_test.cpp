@@ -20,11 +20,15 @@ TEST(Attachments, ProximityToBothBonesOnTheBand)
   const auto found = attachments::find(inputs, {}, {});
   EXPECT_NE(found.femur.rule.find("proximity"), std::string::npos);
   EXPECT_NE(found.tibia.rule.find("proximity"), std::string::npos);
-  // The femur proxy caps the top end; the tibia proxy runs beside the distal quarter.
+  // The femur proxy caps the top end; the tibia proxy hugs the inner side of the distal
+  // quarter (20.4 mm of arc): its area is that side, up to the proximity distance beyond.
   EXPECT_GT(found.femur.mean.z(), 75.0);
-  EXPECT_LT(found.tibia.mean.z(), 20.0);
-  for (int v : found.tibia.vertices)
-    EXPECT_LE(band().surface.V(v, 2), 20.0 + 1e-9);
+  EXPECT_LT(found.tibia.mean.z(), 12.0);
+  EXPECT_GT(found.tibia.vertices.size(), 100u);
+  for (int v : found.tibia.vertices) {
+    EXPECT_LE(band().surface.V(v, 2), 21.5);
+    EXPECT_LT(band().surface.V(v, 0), band().axis.point(band().surface.V(v, 2) / 82.0).x());
+  }
 }
 
 TEST(Attachments, FemurDefaultsToTheEndFarthestFromTheTibia)

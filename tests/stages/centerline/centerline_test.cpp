@@ -15,8 +15,8 @@ centerline::Centerline extract(const test::VoxelisedShape& v, double alpha, doub
   parameters.alpha = alpha;
   parameters.refine = refine;
   parameters.extend_to_surface = extend;
-  return centerline::extract(v.mask, v.distance, v.shape.axis.point(u0), v.shape.axis.point(u1),
-                             parameters);
+  return centerline::extract(v.mask, v.distance, test::as_points(v.shape.axis.point(u0)),
+                             test::as_points(v.shape.axis.point(u1)), parameters);
 }
 
 /// Largest distance from the true axis over the points farther than `margin` mm from both ends.
@@ -101,9 +101,40 @@ TEST(Centerline, DisconnectedAttachmentsAreAClearError)
   a.surface = both;
   const auto v = test::voxelise(std::move(a), 0.4);
   try {
-    centerline::extract(v.mask, v.distance, {0, 0, 2}, {0, 0, 23}, {});
+    centerline::extract(v.mask, v.distance, test::as_points({0, 0, 2}), test::as_points({0, 0, 23}), {});
     FAIL() << "disconnected parts connected";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot be connected"), std::string::npos) << e.what();
   }
+}
+
+TEST(Centerline, SpanningTheAttachmentsRunsAlongALongInsertion)
+{
+  // A1: the surface vertices of the first 3 mm of a cylinder; A2: those from 15 to 30 mm, a long
+  // insertion. The paper's line stops at A2's mean (z ~ 22.5); spanning runs to its far end.
+  const auto v = test::voxelise(synthetic::cylinder(3.0, 30.0), 0.4);
+  std::vector<Eigen::Vector3d> a1, a2;
+  for (Eigen::Index i = 0; i < v.shape.surface.V.rows(); ++i) {
+    const Eigen::Vector3d p = v.shape.surface.V.row(i);
+    if (p.z() <= 3.0)
+      a1.push_back(p);
+    else if (p.z() >= 15.0)
+      a2.push_back(p);
+  }
+  auto points = [](const std::vector<Eigen::Vector3d>& list) {
+    Points result(static_cast<Eigen::Index>(list.size()), 3);
+    for (std::size_t i = 0; i < list.size(); ++i)
+      result.row(static_cast<Eigen::Index>(i)) = list[i].transpose();
+    return result;
+  };
+  centerline::Parameters parameters;
+  parameters.alpha = 1.0;
+  parameters.extend_to_surface = false;
+  const auto means = centerline::extract(v.mask, v.distance, points(a1), points(a2), parameters);
+  parameters.span = centerline::Span::attachments;
+  const auto spanning = centerline::extract(v.mask, v.distance, points(a1), points(a2), parameters);
+  EXPECT_NEAR(means.points(means.points.rows() - 1, 2), 22.5, 1.0);
+  EXPECT_GT(spanning.points(spanning.points.rows() - 1, 2), 29.0);
+  EXPECT_LT(spanning.points(0, 2), 1.0);
+  EXPECT_THROW(centerline::parse_span("ends"), InputError);
 }

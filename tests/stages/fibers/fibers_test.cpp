@@ -31,8 +31,8 @@ Chain run_chain(synthetic::Shape shape, double spacing, field::Method method)
   Chain c{test::voxelise(std::move(shape), spacing), {}, {}, {}, {}, {}};
   centerline::Parameters cp;
   cp.alpha = 1.0;
-  c.line = centerline::extract(c.v.mask, c.v.distance, c.v.shape.axis.point(0.05),
-                               c.v.shape.axis.point(0.95), cp);
+  c.line = centerline::extract(c.v.mask, c.v.distance, test::as_points(c.v.shape.axis.point(0.05)),
+                               test::as_points(c.v.shape.axis.point(0.95)), cp);
   c.polyline = std::make_unique<Polyline>(c.line.points, c.line.tangents);
   field::Parameters fp;
   fp.method = method;
