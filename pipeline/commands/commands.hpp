@@ -10,6 +10,8 @@ namespace ligsim::cli {
 
 /// `build` and one subcommand per model-building stage (voxelize ... model).
 void add_build_commands(CLI::App& app);
+/// `bench`: benchmark jobs (long runs, outside the test suite).
+void add_bench_command(CLI::App& app);
 /// `synth`: synthetic shapes with known axes.
 void add_synth_command(CLI::App& app);
 /// `simulate`: run a hyperelastic scene file.

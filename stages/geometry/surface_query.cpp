@@ -97,6 +97,16 @@ std::optional<Eigen::Vector3d> SurfaceQuery::first_hit(const Eigen::Vector3d& or
                                                        const Eigen::Vector3d& direction,
                                                        double min_t) const
 {
+  if (min_t <= 0.0) {
+    // The tree's own nearest-first traversal: much cheaper than collecting every crossing.
+    const Ray ray(to_cgal(origin), Vector(direction.x(), direction.y(), direction.z()));
+    const auto hit = m_tree->tree.first_intersection(ray);
+    if (!hit)
+      return std::nullopt;
+    if (const Point* p = boost::get<Point>(&hit->first))
+      return to_eigen(*p);
+    // The ray runs in a triangle's plane: fall back to the crossings of the full list.
+  }
   for (double t : ray_hits(origin, direction))
     if (t > min_t)
       return origin + t * direction;
