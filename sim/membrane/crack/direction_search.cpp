@@ -28,7 +28,38 @@ struct SearchInterval {
   }
 };
 
+/// Where c can peak off a smooth maximum: the kinks of the threshold (d along and across the
+/// fiber), the peak of the numerator (d across the largest principal stress) and, with a
+/// previous direction, the edges of the theta_P cone.
+std::vector<double> exact_candidates(const SearchInterval& interval, const Eigen::Vector3d& stress,
+                                     const Eigen::Vector2d& fiber, bool gated)
+{
+  const double fiber_angle = angle_of(fiber);
+  const double principal_angle = angle_of(largest_principal_stress(stress).second);
+  std::vector<double> exact;
+  for (double special : {fiber_angle, fiber_angle + M_PI / 2, principal_angle + M_PI / 2})
+    if (const auto placed = interval.place(special))
+      exact.push_back(*placed);
+  if (gated) {
+    exact.push_back(interval.lo);
+    exact.push_back(interval.hi);
+  }
+  return exact;
+}
+
 } // namespace
+
+double screen_tear_value(const TearThresholds& thresholds, const Eigen::Vector3d& stress,
+                         const Eigen::Vector2d& fiber)
+{
+  const SearchInterval interval;
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 18; ++i)
+    best = std::max(best, criterion_value(thresholds, stress, fiber, unit_at(i * M_PI / 18.0)));
+  for (double angle : exact_candidates(interval, stress, fiber, false))
+    best = std::max(best, criterion_value(thresholds, stress, fiber, unit_at(angle)));
+  return best;
+}
 
 std::pair<double, Eigen::Vector2d> largest_principal_stress(const Eigen::Vector3d& stress)
 {
@@ -97,19 +128,9 @@ TearDirection best_tear_direction(const TearThresholds& thresholds, const Eigen:
     best_angle = refined;
   }
 
-  // Exact candidates: the kinks of the threshold (d along / across the fiber), the peak of the
-  // numerator (d across the largest principal stress) and the edges of the theta_P cone. They
-  // win ties with the numerical optimum, which is only accurate to rounding.
-  const double fiber_angle = angle_of(fiber);
-  const double principal_angle = angle_of(largest_principal_stress(stress).second);
-  std::vector<double> exact;
-  for (double special : {fiber_angle, fiber_angle + M_PI / 2, principal_angle + M_PI / 2})
-    if (const auto placed = interval.place(special))
-      exact.push_back(*placed);
-  if (previous) {
-    exact.push_back(interval.lo);
-    exact.push_back(interval.hi);
-  }
+  // The exact candidates win ties with the numerical optimum, which is only accurate to
+  // rounding.
+  const std::vector<double> exact = exact_candidates(interval, stress, fiber, previous.has_value());
   double exact_value = -std::numeric_limits<double>::infinity(), exact_angle = 0.0;
   for (double angle : exact) {
     const double value = value_at(angle);

@@ -29,6 +29,12 @@ TearDirection best_tear_direction(const TearThresholds& thresholds, const Eigen:
                                   const std::optional<Eigen::Vector2d>& previous,
                                   double grid_step_rad = M_PI / 180.0);
 
+/// A cheap estimate of max_d c(d) without a gate: c on a 10-degree grid and at the exact
+/// candidates above. It misses the maximum only where c peaks smoothly between grid points,
+/// by a few percent at most; tearing uses it to pick the elements worth a full search.
+double screen_tear_value(const TearThresholds& thresholds, const Eigen::Vector3d& stress,
+                         const Eigen::Vector2d& fiber);
+
 /// Largest principal stress and the unit direction it acts along, MPa.
 std::pair<double, Eigen::Vector2d> largest_principal_stress(const Eigen::Vector3d& stress);
 

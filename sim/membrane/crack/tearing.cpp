@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 
 namespace ligsim::membrane {
@@ -120,10 +121,13 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
           on_crack[mesh.triangles[tri][k]] = true;
           on_crack[mesh.triangles[tri][(k + 1) % 3]] = true;
         }
-    // c <= largest principal stress / smallest threshold: a cheap screen before the search.
+    // c <= largest principal stress / smallest threshold, then c on a coarse grid: only the
+    // elements within 5 % of tearing get the full search, the best first, until the step's
+    // events are found.
     const double lowest = std::min(thresholds.fiber_mpa, thresholds.transverse_mpa);
     const double clearance2 = m_settings.initiation_clearance_mm *
                               m_settings.initiation_clearance_mm;
+    std::vector<std::pair<double, int>> screened;
     for (int tri = 0; tri < mesh.triangle_count(); ++tri) {
       const Triangle& t = mesh.triangles[tri];
       if (on_crack[t[0]] || on_crack[t[1]] || on_crack[t[2]])
@@ -135,10 +139,21 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
             return (mesh.rest[tip.node] - centre).squaredNorm() < clearance2;
           }))
         continue;
+      const double estimate = screen_tear_value(thresholds, elements.stress(tri), fiber_of(mesh, tri));
+      if (estimate > 0.95)
+        screened.emplace_back(estimate, tri);
+    }
+    std::sort(screened.begin(), screened.end(), std::greater<>());
+    int found = 0;
+    for (const auto& [estimate, tri] : screened) {
+      if (found >= m_settings.max_events_per_step)
+        break;
       const TearDirection best =
           best_tear_direction(thresholds, elements.stress(tri), fiber_of(mesh, tri), std::nullopt);
-      if (best.value > 1.0)
+      if (best.value > 1.0) {
         candidates.push_back({best.value, best.direction, -1, tri});
+        ++found;
+      }
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),

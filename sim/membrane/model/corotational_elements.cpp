@@ -64,13 +64,15 @@ void CorotationalElements::add_forces(const MembraneMesh& mesh, std::vector<Vec2
     Eigen::Matrix2d current_edges;
     current_edges << x1 - x0, x2 - x0;
     const Eigen::Matrix2d f = current_edges * m_rest_inverse[tri];
-    // Polar rotation of a 2 x 2 matrix: the angle of (f00 + f11, f10 - f01).
+    // The rotation closest to F (the polar one where det F > 0): the angle of
+    // (f00 + f11, f10 - f01). It stays a proper rotation for an inverted element, whose
+    // linear forces in the rotated frame then push it back (Irving et al. 2004).
     const double cos_part = f(0, 0) + f(1, 1), sin_part = f(1, 0) - f(0, 1);
     const double norm = std::hypot(cos_part, sin_part);
-    if (!(f.determinant() > 0.0) || !(norm > 0.0))
-      fail<SolverError>("membrane element {} inverted or degenerated (det F = {})", tri,
-                        f.determinant());
-    const double c = cos_part / norm, s = sin_part / norm;
+    if (!std::isfinite(norm))
+      fail<SolverError>("membrane element {} has a non-finite deformation", tri);
+    const double c = norm > 0.0 ? cos_part / norm : m_rotation[tri].x();
+    const double s = norm > 0.0 ? sin_part / norm : m_rotation[tri].y();
     m_rotation[tri] = Vec2(c, s);
     Eigen::Matrix<double, 6, 1> u;
     for (int i = 0; i < 3; ++i) {

@@ -5,7 +5,8 @@
 /// the barycentric gradients g_i, the material stiffness C(theta) of the element's fiber angle
 /// and the 6 x 6 element stiffness K_e = h A B^T C B. Each step the rotation R is the polar
 /// rotation of the deformation gradient F = R S; the element then acts linearly in its rotated
-/// frame: u_i = R^T x_i - X_i, f_i = -R (K_e u)_i, stress = C B u. Stresses and fibers are thus
+/// frame: u_i = R^T x_i - X_i, f_i = -R (K_e u)_i, stress = C B u. (R is the rotation closest
+/// to F, so an inverted element gets forces that restore it.) Stresses and fibers are thus
 /// in the rest frame, where the crack directions are searched. The tangent used by the implicit
 /// solve is R K_e R^T (the usual co-rotational approximation without dR/dx).
 
@@ -32,7 +33,8 @@ public:
   void refresh(const MembraneMesh& mesh, int tri, int parent = -1);
 
   /// Internal forces at the current positions (added into `forces`, #nodes), updating each
-  /// element's rotation and stress. Throws SolverError naming the element if one inverts.
+  /// element's rotation and stress. Throws SolverError naming the element if a position is
+  /// not finite.
   void add_forces(const MembraneMesh& mesh, std::vector<Vec2>& forces);
 
   /// out += K p with the tangent R K_e R^T of the last add_forces (p and out #nodes).

@@ -1,0 +1,85 @@
+/// `ligsim tear` end to end: the files it writes, and one clear line on bad input.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LigsimRun {
+  int status = -1;
+  std::string output;
+};
+
+LigsimRun run_ligsim(const std::string& arguments)
+{
+  const fs::path log = fs::temp_directory_path() / "ligsim_tear_command_test.log";
+  const std::string command = std::string(LIGSIM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  LigsimRun run;
+  const int raw = std::system(command.c_str());
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return run;
+}
+
+std::string scene(const std::string& name)
+{
+  return (fs::path(LIGSIM_SOURCE_DIR) / "data" / "scenes" / (name + ".toml")).string();
+}
+
+TEST(TearCommand, WritesFramesPngsAndSummary)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test";
+  fs::remove_all(out);
+  const LigsimRun run = run_ligsim("-q tear " + scene("capsulorhexis") + " --out " + out.string() +
+                             " --max-steps 40 --frame-every 20 --png-size 200");
+  ASSERT_EQ(run.status, 0) << run.output;
+  for (const char* file : {"frames.pvd", "summary.json", "frame_00000.vtu", "frame_00000.png",
+                           "frame_00001.vtu", "frame_00002.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  EXPECT_FALSE(fs::exists(out / "frame_00003.vtu"));
+
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  const nlohmann::json& results = summary.at("results");
+  EXPECT_EQ(summary.at("job"), "tear");
+  EXPECT_EQ(results.at("steps"), 40);
+  EXPECT_GT(results.at("ms_per_step").get<double>(), 0.0);
+  EXPECT_GT(results.at("elements").get<int>(), 1500);
+  EXPECT_GE(results.at("min_angle_deg").get<double>(), 10.0);
+  for (const char* key : {"propagation_events", "tear_direction_deg", "tear_radius_cv", "separated"})
+    EXPECT_TRUE(results.contains(key)) << key;
+  fs::remove_all(out);
+}
+
+TEST(TearCommand, NoPngMeansNoPng)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_nopng";
+  fs::remove_all(out);
+  const LigsimRun run = run_ligsim("-q tear " + scene("square-sheet-90") + " --out " + out.string() +
+                             " --max-steps 5 --no-png");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "frame_00001.vtu"));
+  EXPECT_FALSE(fs::exists(out / "frame_00000.png"));
+  fs::remove_all(out);
+}
+
+TEST(TearCommand, BadSceneIsOneLineAndNoOutput)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_bad";
+  fs::remove_all(out);
+  const LigsimRun run = run_ligsim("tear /nonexistent/scene.toml --out " + out.string());
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.output, "ligsim: error: scene file /nonexistent/scene.toml does not exist\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+} // namespace
