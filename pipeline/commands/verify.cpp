@@ -7,6 +7,8 @@
 #include "common/run_summary.hpp"
 #include "sim/verify/cube_verification.hpp"
 #include "sim/verify/stability.hpp"
+#include "sim/verify/sweep.hpp"
+#include "common/svg_plot.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -56,6 +58,49 @@ sim::NewtonSettings cube_newton(const CubeOptions& options)
   return settings;
 }
 
+void run_sweep(const CubeOptions& options, const sim::FebioReference& reference)
+{
+  if (options.cases.size() > 1)
+    fail("--sweep runs one case: give at most one name in --cases");
+  const std::string name = options.cases.empty() ? "par_t020_pen" : options.cases.front();
+  const sim::FebioCase* chosen = nullptr;
+  for (const sim::FebioCase& c : reference.cases)
+    if (c.name == name)
+      chosen = &c;
+  if (!chosen)
+    fail("--cases: no case named '{}' in {}", name, (options.reference / "cases.json").string());
+  RunSummary summary("verify cube --sweep");
+  summary.inputs()["reference"] = options.reference.string();
+  summary.parameters()["case"] = name;
+  const sim::SweepSettings settings;
+  StageMeter meter;
+  const std::vector<sim::SweepRow> rows =
+      sim::run_sweep(reference, *chosen, settings, [](const sim::SweepRow& r) {
+        log_info(r.converged
+                     ? fmt::format("{} n={} {} tol {:g}: avg error vs finest {:.2e} %, {:.2f} s",
+                                   r.family, r.cells, r.linear_solver, r.tolerance,
+                                   r.avg_error_finest_pct, r.wall_s)
+                     : fmt::format("{} n={} {} tol {:g}: failed: {}", r.family, r.cells,
+                                   r.linear_solver, r.tolerance, r.failure));
+      });
+  summary.add_stage("sweep", meter, {{"runs", rows.size()}});
+  ensure_directory(options.out);
+  write_text_atomically(options.out / "sweep.csv", sim::sweep_csv(rows));
+  write_text_atomically(options.out / "sweep.svg", svg_line_plot(sim::sweep_plot(rows, name)));
+  write_text_atomically(
+      options.out / "sweep.md",
+      fmt::format("# Error against run time, case {} (matched energy)\n\nErrors: top-face node "
+                  "positions in percent of the edge, against the finest mesh ({}^3 hexes, "
+                  "interpolated at each mesh's nodes) and against FEBio on its own 16^3 mesh. "
+                  "'vs continuum': average top-face displacement against FEBio's quadratic-tet "
+                  "solution (continuum.json).\n\n",
+                  name, settings.finest_cells) +
+          sim::sweep_table(rows));
+  summary.results()["rows"] = rows.size();
+  summary.write(options.out);
+  log_info(fmt::format("wrote {}, sweep.svg and sweep.md", (options.out / "sweep.csv").string()));
+}
+
 void run_cube(const CubeOptions& options)
 {
   if (!fs::is_directory(options.reference))
@@ -79,6 +124,10 @@ void run_cube(const CubeOptions& options)
   }
   summary.add_stage("read", read_meter,
                     {{"nodes", mesh.mesh.V.rows()}, {"elements", mesh.mesh.T.rows()}});
+  if (options.sweep) {
+    run_sweep(options, reference);
+    return;
+  }
 
   const sim::NewtonSettings settings = cube_newton(options);
   std::vector<sim::CubeCaseResult> results;

@@ -12,8 +12,8 @@ namespace {
 constexpr Eigen::Index chunk_size = 4096;
 /// Lagged-factor CG: give up (and refactorise) beyond this many iterations; refactorise before
 /// the next solve when one needed more than `slow_iterations`.
-constexpr int lagged_iteration_limit = 25;
-constexpr int slow_iterations = 10;
+constexpr int lagged_iteration_limit = 40;
+constexpr int slow_iterations = 20;
 /// Relative residual of lagged-factor CG solves.
 constexpr double lagged_tolerance = 1e-8;
 

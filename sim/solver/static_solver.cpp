@@ -214,8 +214,11 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport&
     report.relative_residual = residual.norm() / scale;
     const bool small_residual = report.relative_residual <= m_settings.residual_tolerance ||
                                 residual.norm() <= m_force_floor;
+    const double energy_tolerance = m_settings.energy_tolerance > 0.0
+                                        ? m_settings.energy_tolerance
+                                        : m_settings.residual_tolerance;
     const bool small_energy_change =
-        iteration == 0 || last_energy_change <= m_settings.energy_tolerance * first_energy_change;
+        iteration == 0 || last_energy_change <= energy_tolerance * first_energy_change;
     if (small_residual && small_energy_change)
       return true;
     if (iteration == m_settings.max_iterations) {

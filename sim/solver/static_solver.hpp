@@ -29,8 +29,9 @@ struct NewtonSettings {
   int max_iterations = 30; ///< per load step
   /// Converged when ||r_free|| <= residual_tolerance * max(||f_ext||, ||reactions||) ...
   double residual_tolerance = 1e-8;
-  /// ... and the last step's energy change |alpha d.r| <= energy_tolerance * the first one's.
-  double energy_tolerance = 1e-10;
+  /// ... and the last step's energy change |alpha d.r| <= energy_tolerance * the first one's;
+  /// 0 means the same value as residual_tolerance.
+  double energy_tolerance = 0.0;
   LinearSolverKind linear_solver = LinearSolverKind::direct;
   PcgSettings pcg;
   PsdProjection projection = PsdProjection::automatic;
