@@ -13,8 +13,8 @@
 #include "sim/membrane/scene/tear_simulation.hpp"
 
 #include <CLI/CLI.hpp>
-#include <vtkUnstructuredGrid.h>
 #include <fmt/format.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
 #include <cmath>
@@ -75,7 +75,8 @@ nlohmann::json results_of(const TearSimulation& simulation)
   results["simulated_time_s"] = simulation.time_s();
   results["ms_per_step"] = median(metrics.step_ms);
   results["ms_per_step_max"] =
-      metrics.step_ms.empty() ? 0.0 : *std::max_element(metrics.step_ms.begin(), metrics.step_ms.end());
+      metrics.step_ms.empty() ? 0.0
+                              : *std::max_element(metrics.step_ms.begin(), metrics.step_ms.end());
   results["cg_iterations_mean"] =
       metrics.cg_iterations.empty()
           ? 0.0
@@ -89,7 +90,8 @@ nlohmann::json results_of(const TearSimulation& simulation)
   results["nodes"] = simulation.mesh().node_count();
   results["min_angle_deg"] = metrics.min_angle_rad * 180.0 / M_PI;
   const double direction = mean_tear_direction_deg(events);
-  results["tear_direction_deg"] = std::isfinite(direction) ? nlohmann::json(direction) : nlohmann::json();
+  results["tear_direction_deg"] =
+      std::isfinite(direction) ? nlohmann::json(direction) : nlohmann::json();
   results["separated"] = metrics.separated;
   if (metrics.onset) {
     results["onset_step"] = metrics.onset->step;
@@ -179,12 +181,18 @@ void add_tear_command(CLI::App& app)
   auto options = std::make_shared<TearOptions>();
   auto* command = app.add_subcommand(
       "tear", "tear a fibrous membrane scene (VTU and PNG frames, frames.pvd, summary.json)");
-  command->add_option("scene", options->scene, "scene file (.toml), e.g. data/scenes/square-sheet-45.toml")
+  command
+      ->add_option("scene", options->scene,
+                   "scene file (.toml), e.g. data/scenes/square-sheet-45.toml")
       ->required();
   command->add_option("--out", options->out, "output folder")->required();
-  command->add_option("--max-steps", options->max_steps, "stop after this many steps (default: the scene's)")
+  command
+      ->add_option("--max-steps", options->max_steps,
+                   "stop after this many steps (default: the scene's)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--frame-every", options->frame_every, "steps between frames (default: the scene's)")
+  command
+      ->add_option("--frame-every", options->frame_every,
+                   "steps between frames (default: the scene's)")
       ->check(CLI::PositiveNumber);
   command->add_option("--max-frames", options->max_frames, "write at most this many frames")
       ->check(CLI::PositiveNumber);

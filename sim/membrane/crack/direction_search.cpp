@@ -8,9 +8,15 @@
 namespace ligsim::membrane {
 namespace {
 
-Eigen::Vector2d unit_at(double angle) { return {std::cos(angle), std::sin(angle)}; }
+Eigen::Vector2d unit_at(double angle)
+{
+  return {std::cos(angle), std::sin(angle)};
+}
 
-double angle_of(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+double angle_of(const Eigen::Vector2d& v)
+{
+  return std::atan2(v.y(), v.x());
+}
 
 /// The search interval [lo, hi] of angles and the criterion on it.
 struct SearchInterval {

@@ -10,8 +10,7 @@ namespace ligsim::membrane {
 namespace {
 
 /// The uncut interior edge from `tip` closest in angle to d, within 90 degrees; -1 if none.
-int closest_edge(const MembraneMesh& mesh, const NodeIncidence& incidence, int tip,
-                 const Vec2& d)
+int closest_edge(const MembraneMesh& mesh, const NodeIncidence& incidence, int tip, const Vec2& d)
 {
   int best = -1;
   double best_cos = 0.0;
@@ -28,8 +27,8 @@ int closest_edge(const MembraneMesh& mesh, const NodeIncidence& incidence, int t
 }
 
 /// The triangle at `tip` whose corner contains the direction d, as the side opposite the tip.
-std::optional<SideRef> side_ahead(const MembraneMesh& mesh, const NodeIncidence& incidence,
-                                  int tip, const Vec2& d)
+std::optional<SideRef> side_ahead(const MembraneMesh& mesh, const NodeIncidence& incidence, int tip,
+                                  const Vec2& d)
 {
   for (const int* tri = incidence.begin(tip); tri != incidence.end(tip); ++tri) {
     const Triangle& t = mesh.triangles[*tri];
@@ -164,8 +163,7 @@ PolylineCut cut_polyline(MembraneMesh& mesh, const std::vector<Vec2>& points,
     }
   }
   if (cut.advances.empty())
-    fail("the cut from ({}, {}) mm is shorter than half an element", points[0].x(),
-         points[0].y());
+    fail("the cut from ({}, {}) mm is shorter than half an element", points[0].x(), points[0].y());
   const NodeIncidence incidence = build_incidence(mesh);
   const CrackAdvance& first = cut.advances.front();
   const CrackAdvance& last = cut.advances.back();

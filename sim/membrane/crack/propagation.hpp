@@ -13,9 +13,9 @@
 namespace ligsim::membrane {
 
 struct PropagationSettings {
-  bool split_faces = true;                   ///< mode 2; false: along edges only (mode 1)
+  bool split_faces = true;                    ///< mode 2; false: along edges only (mode 1)
   double min_angle_rad = 10.0 * M_PI / 180.0; ///< no split makes a smaller triangle angle
-  double min_area_mm2 = 1e-6;                ///< no split makes a smaller triangle
+  double min_area_mm2 = 1e-6;                 ///< no split makes a smaller triangle
 };
 
 /// One step of a crack: from node `from` to node `to` (rest positions kept, since the nodes
@@ -46,8 +46,8 @@ std::vector<CrackAdvance> initiate_crack(MembraneMesh& mesh, int tri, const Vec2
 /// first point, advancing towards each point in turn until within half an edge of it.
 struct PolylineCut {
   std::vector<CrackAdvance> advances;
-  int start_node = -1; ///< -1 if the cut starts on the free boundary
-  int end_node = -1;   ///< -1 if the cut ends on the free boundary
+  int start_node = -1;                 ///< -1 if the cut starts on the free boundary
+  int end_node = -1;                   ///< -1 if the cut ends on the free boundary
   Vec2 start_direction = Vec2::Zero(); ///< pointing out of the cut at its start
   Vec2 end_direction = Vec2::Zero();   ///< pointing out of the cut at its end
 };

@@ -73,8 +73,7 @@ int Tearing::add_tip(int node, const Vec2& previous)
 
 std::pair<Eigen::Vector3d, Vec2> Tearing::tip_state(const MembraneMesh& mesh,
                                                     const CorotationalElements& elements,
-                                                    const NodeIncidence& incidence,
-                                                    int node) const
+                                                    const NodeIncidence& incidence, int node) const
 {
   Eigen::Vector3d stress = Eigen::Vector3d::Zero();
   Vec2 doubled = Vec2::Zero();
@@ -125,8 +124,8 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
     // elements within 5 % of tearing get the full search, the best first, until the step's
     // events are found.
     const double lowest = std::min(thresholds.fiber_mpa, thresholds.transverse_mpa);
-    const double clearance2 = m_settings.initiation_clearance_mm *
-                              m_settings.initiation_clearance_mm;
+    const double clearance2 =
+        m_settings.initiation_clearance_mm * m_settings.initiation_clearance_mm;
     std::vector<std::pair<double, int>> screened;
     for (int tri = 0; tri < mesh.triangle_count(); ++tri) {
       const Triangle& t = mesh.triangles[tri];
@@ -139,7 +138,8 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
             return (mesh.rest[tip.node] - centre).squaredNorm() < clearance2;
           }))
         continue;
-      const double estimate = screen_tear_value(thresholds, elements.stress(tri), fiber_of(mesh, tri));
+      const double estimate =
+          screen_tear_value(thresholds, elements.stress(tri), fiber_of(mesh, tri));
       if (estimate > 0.95)
         screened.emplace_back(estimate, tri);
     }
@@ -197,8 +197,8 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
         apply_edit(mesh, elements, advance.edit, areal_density_t_per_mm2);
         changed.insert(advance.edit.triangles.begin(), advance.edit.triangles.end());
         if (advance.continues)
-          new_tips.push_back({advance.to, (advance.to_rest - advance.from_rest).normalized(),
-                              m_next_tip_id++});
+          new_tips.push_back(
+              {advance.to, (advance.to_rest - advance.from_rest).normalized(), m_next_tip_id++});
       }
       // The new crack runs from the end of one advance to the end of the other.
       const Vec2 from = advances.size() > 1 ? advances.back().to_rest : advances.front().from_rest;

@@ -22,7 +22,7 @@ namespace ligsim::membrane {
 struct TearSettings {
   TearThresholds thresholds;
   PropagationSettings propagation;
-  bool initiation = true;              ///< new cracks may start at element centres
+  bool initiation = true;               ///< new cracks may start at element centres
   double initiation_clearance_mm = 0.0; ///< ... but not within this distance of a crack tip
   int max_events_per_step = 2;
 };
@@ -40,7 +40,7 @@ struct CrackTip {
 /// One advance of a crack, as recorded for the outputs and the measurements.
 struct TearEvent {
   bool initiation = false;
-  int tip_id = -1; ///< the tip that advanced (initiation: the first of the new tips)
+  int tip_id = -1;        ///< the tip that advanced (initiation: the first of the new tips)
   double criterion = 0.0; ///< c of the chosen direction, > 1
   Vec2 from_rest = Vec2::Zero();
   Vec2 to_rest = Vec2::Zero();
@@ -49,7 +49,10 @@ struct TearEvent {
 
 class Tearing {
 public:
-  explicit Tearing(const TearSettings& settings) : m_settings(settings) {}
+  explicit Tearing(const TearSettings& settings)
+      : m_settings(settings)
+  {
+  }
 
   /// Adds a crack tip (from a scene's cut); returns its id.
   int add_tip(int node, const Vec2& previous);

@@ -48,8 +48,7 @@ MembraneMesh rectangle_mesh(double width_mm, double height_mm, double element_si
   const double x0 = -0.5 * width_mm, y0 = -0.5 * height_mm;
 
   std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> shake(-jitter * element_size_mm,
-                                               jitter * element_size_mm);
+  std::uniform_real_distribution<double> shake(-jitter * element_size_mm, jitter * element_size_mm);
   std::vector<Vec2> nodes;
   std::vector<std::vector<int>> row_nodes(rows + 1);
   for (int j = 0; j <= rows; ++j) {
@@ -96,16 +95,14 @@ MembraneMesh rectangle_mesh(double width_mm, double height_mm, double element_si
   return mesh_from(nodes, triangles);
 }
 
-MembraneMesh disc_mesh(double radius_mm, double element_size_mm, double jitter,
-                       std::uint64_t seed)
+MembraneMesh disc_mesh(double radius_mm, double element_size_mm, double jitter, std::uint64_t seed)
 {
   check_size(2.0 * radius_mm, element_size_mm, "diameter");
   std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> shake(-jitter * element_size_mm,
-                                               jitter * element_size_mm);
+  std::uniform_real_distribution<double> shake(-jitter * element_size_mm, jitter * element_size_mm);
   std::vector<Vec2> nodes;
-  const int boundary = std::max(
-      8, static_cast<int>(std::lround(2.0 * M_PI * radius_mm / element_size_mm)));
+  const int boundary =
+      std::max(8, static_cast<int>(std::lround(2.0 * M_PI * radius_mm / element_size_mm)));
   for (int i = 0; i < boundary; ++i) {
     const double angle = 2.0 * M_PI * i / boundary;
     nodes.emplace_back(radius_mm * std::cos(angle), radius_mm * std::sin(angle));

@@ -19,7 +19,6 @@ MembraneMesh rectangle_mesh(double width_mm, double height_mm, double element_si
 /// Disc of radius `radius_mm` around the origin: boundary nodes spaced about `element_size_mm`
 /// on the circle, a jittered triangular lattice inside, Delaunay triangles, then three sweeps of
 /// Laplacian smoothing of the interior nodes.
-MembraneMesh disc_mesh(double radius_mm, double element_size_mm, double jitter,
-                       std::uint64_t seed);
+MembraneMesh disc_mesh(double radius_mm, double element_size_mm, double jitter, std::uint64_t seed);
 
 } // namespace ligsim::membrane

@@ -24,18 +24,18 @@ enum class NodeConstraint : std::uint8_t { free, prescribed };
 
 struct MembraneMesh {
   // Nodes.
-  std::vector<Vec2> rest;                ///< rest position, mm
-  std::vector<Vec2> position;            ///< current position, mm
-  std::vector<Vec2> velocity;            ///< mm/s
+  std::vector<Vec2> rest;                 ///< rest position, mm
+  std::vector<Vec2> position;             ///< current position, mm
+  std::vector<Vec2> velocity;             ///< mm/s
   std::vector<Vec2> last_velocity_change; ///< the last step's solve, warm start of the next, mm/s
-  std::vector<double> mass;              ///< lumped mass, t
+  std::vector<double> mass;               ///< lumped mass, t
   std::vector<NodeConstraint> constraint;
   std::vector<Vec2> prescribed_velocity; ///< mm/s, used where constraint is prescribed
 
   // Triangles.
   std::vector<Triangle> triangles;
-  std::vector<double> fiber_angle_rad;           ///< fiber direction from the rest x axis
-  std::vector<std::array<bool, 3>> side_cut;     ///< side k is a crack face
+  std::vector<double> fiber_angle_rad;       ///< fiber direction from the rest x axis
+  std::vector<std::array<bool, 3>> side_cut; ///< side k is a crack face
   /// Load group of side k (0: none). Only sides of the original boundary carry one.
   std::vector<std::array<std::uint8_t, 3>> side_load;
 
@@ -89,6 +89,9 @@ inline int local_index(const Triangle& t, int v)
 }
 
 /// 2-D cross product (z component).
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline double cross(const Vec2& a, const Vec2& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 } // namespace ligsim::membrane

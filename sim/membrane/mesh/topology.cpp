@@ -12,8 +12,14 @@
 namespace ligsim::membrane {
 namespace {
 
-int next(int k) { return (k + 1) % 3; }
-int prev(int k) { return (k + 2) % 3; }
+int next(int k)
+{
+  return (k + 1) % 3;
+}
+int prev(int k)
+{
+  return (k + 2) % 3;
+}
 
 /// Splits the triangle whose side `s` = (b, c) gets the new node p; the triangle becomes
 /// (a, b, p) in place and (a, p, c) is appended.
@@ -27,8 +33,7 @@ void split_triangle_at_side(MembraneMesh& mesh, int tri, int s, int p, TopologyE
   mesh.side_cut[tri] = {cut[prev(s)], cut[s], false};
   mesh.side_load[tri] = {load[prev(s)], load[s], 0};
   const int child = mesh.add_triangle({a, p, c}, mesh.fiber_angle_rad[tri],
-                                      {false, cut[s], cut[next(s)]},
-                                      {0, load[s], load[next(s)]});
+                                      {false, cut[s], cut[next(s)]}, {0, load[s], load[next(s)]});
   edit.touch(tri, tri);
   edit.touch(child, tri);
 }
@@ -187,8 +192,8 @@ std::vector<int> split_fans(MembraneMesh& mesh, const NodeIncidence& incidence, 
     const auto other = opposite_side(mesh, incidence, {around[i], k});
     if (!other || mesh.side_cut[around[i]][k] || mesh.side_cut[other->triangle][other->side])
       continue;
-    const int j = static_cast<int>(std::find(around.begin(), around.end(), other->triangle) -
-                                   around.begin());
+    const int j =
+        static_cast<int>(std::find(around.begin(), around.end(), other->triangle) - around.begin());
     parent[root(parent, i)] = root(parent, j);
   }
   std::map<int, int> copy_of_fan; // fan root -> node used by that fan
@@ -237,9 +242,9 @@ std::string manifold_problem(const MembraneMesh& mesh)
     }
   for (const auto& [edge, side] : directed) {
     const auto reverse = directed.find({edge.second, edge.first});
-    if (reverse != directed.end() && mesh.side_cut[side.triangle][side.side] !=
-                                         mesh.side_cut[reverse->second.triangle]
-                                                      [reverse->second.side])
+    if (reverse != directed.end() &&
+        mesh.side_cut[side.triangle][side.side] !=
+            mesh.side_cut[reverse->second.triangle][reverse->second.side])
       return fmt::format("edge ({}, {}) is cut on one side only", edge.first, edge.second);
   }
   // Every node: one fan, linked through shared edges; 0 or 2 boundary edges.

@@ -90,8 +90,7 @@ void CorotationalElements::add_forces(const MembraneMesh& mesh, std::vector<Vec2
   }
 }
 
-void CorotationalElements::add_stiffness_times(const MembraneMesh& mesh,
-                                               const std::vector<Vec2>& p,
+void CorotationalElements::add_stiffness_times(const MembraneMesh& mesh, const std::vector<Vec2>& p,
                                                std::vector<Vec2>& out) const
 {
   for (int tri = 0; tri < mesh.triangle_count(); ++tri) {

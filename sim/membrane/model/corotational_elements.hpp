@@ -23,7 +23,10 @@ using ElementMatrix = Eigen::Matrix<double, 6, 6>;
 
 class CorotationalElements {
 public:
-  explicit CorotationalElements(const MembraneMaterial& material) : m_material(material) {}
+  explicit CorotationalElements(const MembraneMaterial& material)
+      : m_material(material)
+  {
+  }
 
   /// (Re)computes the rest data of every triangle of `mesh`.
   void rebuild(const MembraneMesh& mesh);
@@ -52,12 +55,12 @@ public:
 
 private:
   MembraneMaterial m_material;
-  std::vector<ElementMatrix> m_stiffness;             ///< K_e, N/mm
-  std::vector<Eigen::Matrix<double, 3, 6>> m_strain;  ///< B: strain from local displacements
-  std::vector<Eigen::Matrix3d> m_material_stiffness;  ///< C(theta), MPa
-  std::vector<Vec2> m_rotation;                       ///< (cos, sin) of R
-  std::vector<Eigen::Vector3d> m_stress;              ///< MPa
-  std::vector<Eigen::Matrix2d> m_rest_inverse;        ///< D_m^-1, 1/mm
+  std::vector<ElementMatrix> m_stiffness;            ///< K_e, N/mm
+  std::vector<Eigen::Matrix<double, 3, 6>> m_strain; ///< B: strain from local displacements
+  std::vector<Eigen::Matrix3d> m_material_stiffness; ///< C(theta), MPa
+  std::vector<Vec2> m_rotation;                      ///< (cos, sin) of R
+  std::vector<Eigen::Vector3d> m_stress;             ///< MPa
+  std::vector<Eigen::Matrix2d> m_rest_inverse;       ///< D_m^-1, 1/mm
 };
 
 } // namespace ligsim::membrane

@@ -42,9 +42,8 @@ void ImplicitEuler::apply_system(const MembraneMesh& mesh, const CorotationalEle
   std::fill(out.begin(), out.end(), Vec2::Zero());
   elements.add_stiffness_times(mesh, p, out);
   for (int v = 0; v < mesh.node_count(); ++v)
-    out[v] = is_free(mesh, v)
-                 ? Vec2(mass_factor * mesh.mass[v] * p[v] + stiffness_factor * out[v])
-                 : Vec2::Zero();
+    out[v] = is_free(mesh, v) ? Vec2(mass_factor * mesh.mass[v] * p[v] + stiffness_factor * out[v])
+                              : Vec2::Zero();
 }
 
 SolveReport ImplicitEuler::step(MembraneMesh& mesh, CorotationalElements& elements,
@@ -53,8 +52,8 @@ SolveReport ImplicitEuler::step(MembraneMesh& mesh, CorotationalElements& elemen
   const int n = mesh.node_count();
   const double h = m_settings.time_step_s;
   const double a = m_settings.mass_damping_per_s, b = m_settings.stiffness_damping_s;
-  for (auto* vector : {&m_force, &m_rhs, &m_diagonal, &m_dv, &m_residual, &m_search, &m_product,
-                       &m_z})
+  for (auto* vector :
+       {&m_force, &m_rhs, &m_diagonal, &m_dv, &m_residual, &m_search, &m_product, &m_z})
     vector->assign(n, Vec2::Zero());
 
   // Right-hand side h (f - a M v - (b + h) K v).
@@ -110,16 +109,16 @@ SolveReport ImplicitEuler::step(MembraneMesh& mesh, CorotationalElements& elemen
     residual_norm = std::sqrt(dot(m_residual, m_residual));
     ++report.iterations;
   }
-  report.relative_residual = rhs_norm_squared > 0.0 ? residual_norm / std::sqrt(rhs_norm_squared)
-                                                    : 0.0;
+  report.relative_residual =
+      rhs_norm_squared > 0.0 ? residual_norm / std::sqrt(rhs_norm_squared) : 0.0;
 
   for (int v = 0; v < n; ++v) {
     mesh.velocity[v] += m_dv[v];
     mesh.position[v] += h * mesh.velocity[v];
     mesh.last_velocity_change[v] = is_free(mesh, v) ? m_dv[v] : Vec2::Zero();
     if (!std::isfinite(mesh.position[v].x()) || !std::isfinite(mesh.position[v].y()))
-      fail<SolverError>("membrane node {} left the finite numbers (time step {} s too large?)",
-                        v, h);
+      fail<SolverError>("membrane node {} left the finite numbers (time step {} s too large?)", v,
+                        h);
   }
   return report;
 }

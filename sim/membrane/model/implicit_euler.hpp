@@ -34,7 +34,10 @@ struct SolveReport {
 
 class ImplicitEuler {
 public:
-  explicit ImplicitEuler(const SolverSettings& settings) : m_settings(settings) {}
+  explicit ImplicitEuler(const SolverSettings& settings)
+      : m_settings(settings)
+  {
+  }
 
   /// Advances `mesh` by one time step under `external_forces` (N, #nodes). Updates the
   /// elements' rotations and stresses to the start of the step. Throws SolverError if a value

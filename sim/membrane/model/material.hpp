@@ -12,7 +12,7 @@ struct MembraneMaterial {
   /// nu_F: transverse contraction under a stress along the fibers. The other Poisson
   /// ratio follows from symmetry: nu_T / E_T = nu_F / E_F.
   double fiber_poisson = 0.0;
-  double shear_modulus_mpa = 0.0;      ///< G_F, in-plane shear
+  double shear_modulus_mpa = 0.0; ///< G_F, in-plane shear
   double thickness_mm = 0.0;
   double density_t_per_mm3 = 0.0;
 

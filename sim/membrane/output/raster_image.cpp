@@ -56,9 +56,11 @@ void RasterImage::fill_triangle(const Eigen::Vector2d& a0, const Eigen::Vector2d
     area = -area;
   }
   const int x_min = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
-  const int x_max = std::min(m_width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+  const int x_max =
+      std::min(m_width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
   const int y_min = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
-  const int y_max = std::min(m_height - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+  const int y_max =
+      std::min(m_height - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
   for (int y = y_min; y <= y_max; ++y)
     for (int x = x_min; x <= x_max; ++x) {
       const Eigen::Vector2d p(x + 0.5, y + 0.5);
@@ -81,13 +83,16 @@ void RasterImage::draw_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, 
   if (!std::isfinite(length))
     return;
   const int x_min = std::max(0, static_cast<int>(std::floor(std::min(a.x(), b.x()) - radius)));
-  const int x_max = std::min(m_width - 1, static_cast<int>(std::ceil(std::max(a.x(), b.x()) + radius)));
+  const int x_max =
+      std::min(m_width - 1, static_cast<int>(std::ceil(std::max(a.x(), b.x()) + radius)));
   const int y_min = std::max(0, static_cast<int>(std::floor(std::min(a.y(), b.y()) - radius)));
-  const int y_max = std::min(m_height - 1, static_cast<int>(std::ceil(std::max(a.y(), b.y()) + radius)));
+  const int y_max =
+      std::min(m_height - 1, static_cast<int>(std::ceil(std::max(a.y(), b.y()) + radius)));
   for (int y = y_min; y <= y_max; ++y)
     for (int x = x_min; x <= x_max; ++x) {
       const Eigen::Vector2d p(x + 0.5, y + 0.5);
-      const double t = length > 0.0 ? std::clamp((p - a).dot(d) / (length * length), 0.0, 1.0) : 0.0;
+      const double t =
+          length > 0.0 ? std::clamp((p - a).dot(d) / (length * length), 0.0, 1.0) : 0.0;
       if ((a + t * d - p).norm() <= radius)
         set(x, y, colour);
     }
@@ -103,7 +108,8 @@ void RasterImage::write_png(const std::filesystem::path& file) const
   for (int y = 0; y < m_height; ++y)
     for (int x = 0; x < m_width; ++x) {
       const Rgb& colour = pixel(x, m_height - 1 - y);
-      std::copy(colour.begin(), colour.end(), data + 3 * (static_cast<std::size_t>(y) * m_width + x));
+      std::copy(colour.begin(), colour.end(),
+                data + 3 * (static_cast<std::size_t>(y) * m_width + x));
     }
   AtomicFile out(file);
   vtkNew<vtkPNGWriter> writer;

@@ -20,7 +20,10 @@ public:
 
   int width() const { return m_width; }
   int height() const { return m_height; }
-  const Rgb& pixel(int x, int y) const { return m_pixels[static_cast<std::size_t>(y) * m_width + x]; }
+  const Rgb& pixel(int x, int y) const
+  {
+    return m_pixels[static_cast<std::size_t>(y) * m_width + x];
+  }
 
   /// Fills the triangle with corners in pixel coordinates (x right, y down); a pixel is inside
   /// when its centre is (top-left rule on shared edges, so neighbours do not overlap).

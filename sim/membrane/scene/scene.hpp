@@ -29,9 +29,9 @@ struct MeshSpec {
 
 struct FiberSpec {
   enum class Kind { uniform, concentric, per_element } kind = Kind::uniform;
-  double angle_rad = 0.0;             ///< uniform: from the x axis
-  Vec2 centre_mm = Vec2::Zero();      ///< concentric: circles around this point
-  std::vector<double> angles_rad;     ///< per element, in mesh generation order
+  double angle_rad = 0.0;         ///< uniform: from the x axis
+  Vec2 centre_mm = Vec2::Zero();  ///< concentric: circles around this point
+  std::vector<double> angles_rad; ///< per element, in mesh generation order
 };
 
 /// A set of points: inside a box, or outside a circle.

@@ -18,7 +18,8 @@ constexpr double kDegree = M_PI / 180.0;
 class TableReader {
 public:
   TableReader(const toml::table* table, std::string where)
-      : m_table(table), m_where(std::move(where))
+      : m_table(table)
+      , m_where(std::move(where))
   {
   }
 
@@ -181,8 +182,8 @@ std::vector<double> read_angles(const std::filesystem::path& file, const std::st
     std::istringstream parse(word);
     double degrees = 0.0;
     if (!(parse >> degrees) || !parse.eof() || !std::isfinite(degrees))
-      fail("{}: fiber file {}: '{}' (value {}) is not an angle in degrees", where,
-           file.string(), word, angles.size() + 1);
+      fail("{}: fiber file {}: '{}' (value {}) is not an angle in degrees", where, file.string(),
+           word, angles.size() + 1);
     angles.push_back(degrees * kDegree);
   }
   if (angles.empty())
@@ -295,8 +296,7 @@ Scene load_scene(const std::filesystem::path& file)
   validate(scene.solver, solver.where().c_str());
 
   const TableReader run = section(root, "run", name, true);
-  run.only({"max_steps", "frame_every", "stop_when_separated", "stop_after_turn_deg",
-            "centre_mm"});
+  run.only({"max_steps", "frame_every", "stop_when_separated", "stop_after_turn_deg", "centre_mm"});
   scene.run.max_steps = static_cast<int>(run.integer("max_steps", 1000));
   scene.run.frame_every = static_cast<int>(run.integer("frame_every", 10));
   if (scene.run.max_steps < 1 || scene.run.frame_every < 1)
@@ -322,8 +322,8 @@ Scene load_scene(const std::filesystem::path& file)
     scene.fixed.push_back(read_region(fixed));
   }
   for (const TableReader& traction : array_of_tables("traction")) {
-    traction.only({"box_mm", "outside_radius_mm", "centre_mm", "direction",
-                   "rate_n_per_mm_per_s", "max_n_per_mm"});
+    traction.only({"box_mm", "outside_radius_mm", "centre_mm", "direction", "rate_n_per_mm_per_s",
+                   "max_n_per_mm"});
     TractionSpec spec;
     spec.region = read_region(traction);
     spec.direction = traction.point("direction", Vec2::Zero());

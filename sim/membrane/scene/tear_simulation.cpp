@@ -25,8 +25,8 @@ void assign_fibers(const Scene& scene, MembraneMesh& mesh)
   const FiberSpec& fibers = scene.fibers;
   if (fibers.kind == FiberSpec::Kind::per_element &&
       static_cast<int>(fibers.angles_rad.size()) != mesh.triangle_count())
-    fail("{}: the fiber file holds {} angles but the mesh has {} triangles",
-         scene.source.string(), fibers.angles_rad.size(), mesh.triangle_count());
+    fail("{}: the fiber file holds {} angles but the mesh has {} triangles", scene.source.string(),
+         fibers.angles_rad.size(), mesh.triangle_count());
   for (int tri = 0; tri < mesh.triangle_count(); ++tri) {
     const Triangle& t = mesh.triangles[tri];
     const Vec2 centre = (mesh.rest[t[0]] + mesh.rest[t[1]] + mesh.rest[t[2]]) / 3.0;
@@ -88,7 +88,8 @@ TearSimulation::TearSimulation(const Scene& scene)
       for (int k = 0; k < 3; ++k) {
         const Vec2& a = m_mesh.rest[m_mesh.triangles[tri][k]];
         const Vec2& b = m_mesh.rest[m_mesh.triangles[tri][(k + 1) % 3]];
-        if (region.contains(a) && region.contains(b) && !opposite_side(m_mesh, incidence, {tri, k})) {
+        if (region.contains(a) && region.contains(b) &&
+            !opposite_side(m_mesh, incidence, {tri, k})) {
           m_mesh.side_load[tri][k] = static_cast<std::uint8_t>(i + 1);
           m_traction_length_mm[i] += (b - a).norm();
         }
@@ -185,8 +186,8 @@ std::vector<Vec2> TearSimulation::external_forces() const
       const double per_length =
           std::min(traction.rate_n_per_mm_per_s * m_time_s, traction.max_n_per_mm);
       const int a = m_mesh.triangles[tri][k], b = m_mesh.triangles[tri][(k + 1) % 3];
-      const Vec2 half = 0.5 * per_length * (m_mesh.rest[b] - m_mesh.rest[a]).norm() *
-                        traction.direction;
+      const Vec2 half =
+          0.5 * per_length * (m_mesh.rest[b] - m_mesh.rest[a]).norm() * traction.direction;
       forces[a] += half;
       forces[b] += half;
     }

@@ -26,12 +26,12 @@ struct TearMetrics {
   std::vector<int> cg_iterations; ///< per step
   int propagation_events = 0;     ///< every advance of a crack and every initiation
   int initiations = 0;
-  int face_splits = 0;            ///< advances that split a face (mode 2)
+  int face_splits = 0; ///< advances that split a face (mode 2)
   int initial_elements = 0;
-  double min_angle_rad = 0.0;     ///< smallest triangle angle ever (rest configuration)
+  double min_angle_rad = 0.0;         ///< smallest triangle angle ever (rest configuration)
   std::optional<RecordedEvent> onset; ///< the first event
   bool separated = false;
-  double turned_rad = 0.0;        ///< signed turn of the lead tip around the run's centre
+  double turned_rad = 0.0; ///< signed turn of the lead tip around the run's centre
   std::vector<RecordedEvent> events;
 };
 

@@ -74,7 +74,8 @@ TEST(CorotationalElements, UniformStretchGivesTheMaterialStressInEveryElementAny
   const Eigen::Vector3d strain(0.002, -0.001, 0.001); // eps_x, eps_y, gamma_xy = 2 eps_xy
   const Eigen::Vector3d expected = rotated_stiffness(m, 30.0 * M_PI / 180.0) * strain;
   for (double degrees : {0.0, 65.0, -150.0}) {
-    const Eigen::Matrix2d deformation = Eigen::Rotation2Dd(degrees * M_PI / 180.0).toRotationMatrix() * stretch;
+    const Eigen::Matrix2d deformation =
+        Eigen::Rotation2Dd(degrees * M_PI / 180.0).toRotationMatrix() * stretch;
     for (int v = 0; v < mesh.node_count(); ++v)
       mesh.position[v] = deformation * mesh.rest[v];
     forces_at(mesh, elements);
@@ -97,7 +98,8 @@ TEST(CorotationalElements, InteriorNodesAreInEquilibriumUnderUniformStress)
   double boundary_force = 0.0;
   for (int v = 0; v < mesh.node_count(); ++v) {
     const Vec2& p = mesh.rest[v];
-    const bool boundary = std::abs(std::abs(p.x()) - 1.5) < 1e-9 || std::abs(std::abs(p.y()) - 1.0) < 1e-9;
+    const bool boundary =
+        std::abs(std::abs(p.x()) - 1.5) < 1e-9 || std::abs(std::abs(p.y()) - 1.0) < 1e-9;
     if (boundary)
       boundary_force = std::max(boundary_force, forces[v].norm());
     else

@@ -50,7 +50,8 @@ TEST(TearCriterion, Eq6GivesTheFiberThresholdAlongAndTheTransverseAcross)
   // A steeper peak (larger alpha) keeps the threshold near sigma_T further from the fiber.
   const TearThresholds steep{2.0, 0.2, 4.0, M_PI / 2.0};
   const Vec2 f = unit_at(0.0);
-  EXPECT_LT(threshold_along(steep, unit_at(30.0), f), threshold_along(thresholds, unit_at(30.0), f));
+  EXPECT_LT(threshold_along(steep, unit_at(30.0), f),
+            threshold_along(thresholds, unit_at(30.0), f));
   EXPECT_NEAR(threshold_along(steep, f, f), 2.0, 1e-12);
 }
 

@@ -12,7 +12,10 @@ using Vec2 = Eigen::Vector2d;
 
 constexpr double kDegree = M_PI / 180.0;
 
-Vec2 unit_at(double radians) { return {std::cos(radians), std::sin(radians)}; }
+Vec2 unit_at(double radians)
+{
+  return {std::cos(radians), std::sin(radians)};
+}
 
 /// The angle between two undirected lines, degrees in [0, 90].
 double line_angle_deg(const Vec2& a, const Vec2& b)
@@ -72,7 +75,8 @@ TEST(TearDirection, NeverBelowAFineExhaustiveSearch)
   std::uniform_real_distribution<double> value(-2.0, 2.0), angle(-M_PI, M_PI), unit(0.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
     const TearThresholds thresholds{0.2 + 2.0 * unit(random), 0.2 + 2.0 * unit(random),
-                                    0.2 + 3.0 * unit(random), (10.0 + 170.0 * unit(random)) * kDegree};
+                                    0.2 + 3.0 * unit(random),
+                                    (10.0 + 170.0 * unit(random)) * kDegree};
     const Eigen::Vector3d stress(value(random), value(random), value(random));
     const Vec2 fiber = unit_at(angle(random));
     const Vec2 previous = unit_at(angle(random));

@@ -35,7 +35,8 @@ TEST(MembraneMeshes, DiscIsAValidManifoldCloseToTheCircle)
   const MembraneMesh mesh = disc_mesh(radius, 0.3, 0.1, 3);
   EXPECT_EQ(manifold_problem(mesh), "");
   const int boundary_nodes = static_cast<int>(std::lround(2.0 * M_PI * radius / 0.3));
-  const double polygon = 0.5 * boundary_nodes * radius * radius * std::sin(2.0 * M_PI / boundary_nodes);
+  const double polygon =
+      0.5 * boundary_nodes * radius * radius * std::sin(2.0 * M_PI / boundary_nodes);
   EXPECT_NEAR(total_area(mesh), polygon, 1e-9);
   EXPECT_GT(min_rest_angle(mesh), 20.0 * M_PI / 180.0);
 }

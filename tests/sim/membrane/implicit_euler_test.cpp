@@ -39,7 +39,8 @@ Sheet pulled_sheet(double fiber_deg)
   for (int v = 0; v < sheet.mesh.node_count(); ++v)
     all[v] = v;
   const MembraneMaterial m = material();
-  update_lumped_masses(sheet.mesh, build_incidence(sheet.mesh), m.density_t_per_mm3 * m.thickness_mm, all);
+  update_lumped_masses(sheet.mesh, build_incidence(sheet.mesh),
+                       m.density_t_per_mm3 * m.thickness_mm, all);
   return sheet;
 }
 
@@ -61,7 +62,7 @@ std::vector<Vec2> side_loads(const MembraneMesh& mesh, double per_length)
   return forces;
 }
 
-TEST(ImplicitEuler, FreeSheetUnderOppositeTractionsSettlesToUniaxialStress)
+TEST(MembraneImplicitEuler, FreeSheetUnderOppositeTractionsSettlesToUniaxialStress)
 {
   // Balanced tractions q on the sides of a free sheet: at rest every element carries
   // sigma_x = q / h and the sheet lengthens by S11 sigma_x per unit length, S = C(theta)^-1.
@@ -100,7 +101,7 @@ TEST(ImplicitEuler, FreeSheetUnderOppositeTractionsSettlesToUniaxialStress)
   EXPECT_NEAR(elongation, compliance(0, 0) * sigma * 4.0, 2e-3 * compliance(0, 0) * sigma * 4.0);
 }
 
-TEST(ImplicitEuler, PrescribedNodesMoveWithTheirVelocity)
+TEST(MembraneImplicitEuler, PrescribedNodesMoveWithTheirVelocity)
 {
   Sheet sheet = pulled_sheet(0.0);
   for (int v = 0; v < sheet.mesh.node_count(); ++v)
@@ -116,12 +117,13 @@ TEST(ImplicitEuler, PrescribedNodesMoveWithTheirVelocity)
     euler.step(sheet.mesh, sheet.elements, none);
   for (int v = 0; v < sheet.mesh.node_count(); ++v) {
     if (sheet.mesh.constraint[v] == NodeConstraint::prescribed) {
-      ASSERT_LT((sheet.mesh.position[v] - sheet.mesh.rest[v] - Vec2(0.0, 0.5 * 20 * 1e-3)).norm(), 1e-12);
+      ASSERT_LT((sheet.mesh.position[v] - sheet.mesh.rest[v] - Vec2(0.0, 0.5 * 20 * 1e-3)).norm(),
+                1e-12);
     }
   }
 }
 
-TEST(ImplicitEuler, RejectsBadSettings)
+TEST(MembraneImplicitEuler, RejectsBadSettings)
 {
   SolverSettings settings;
   settings.time_step_s = 0.0;

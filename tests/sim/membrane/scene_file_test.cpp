@@ -14,12 +14,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SceneFile : public ::testing::Test {
+class MembraneSceneFile : public ::testing::Test {
 protected:
   void SetUp() override
   {
     m_dir = fs::temp_directory_path() /
-            ("ligsim_scene_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+            ("ligsim_scene_test_" +
+             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::create_directories(m_dir);
     std::ifstream in(fs::path(LIGSIM_SOURCE_DIR) / "data" / "scenes" / "square-sheet-45.toml");
     m_base.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -55,17 +56,20 @@ protected:
   std::string m_base;
 };
 
-TEST_F(SceneFile, ShippedScenesLoad)
+TEST_F(MembraneSceneFile, ShippedScenesLoad)
 {
-  for (const char* name : {"square-sheet-0", "square-sheet-45", "square-sheet-90", "capsulorhexis"}) {
-    const Scene scene = load_scene(fs::path(LIGSIM_SOURCE_DIR) / "data" / "scenes" / (std::string(name) + ".toml"));
+  for (const char* name :
+       {"square-sheet-0", "square-sheet-45", "square-sheet-90", "capsulorhexis"}) {
+    const Scene scene =
+        load_scene(fs::path(LIGSIM_SOURCE_DIR) / "data" / "scenes" / (std::string(name) + ".toml"));
     EXPECT_EQ(scene.name, name);
   }
 }
 
-TEST_F(SceneFile, ErrorsNameTheFileAndTheProblem)
+TEST_F(MembraneSceneFile, ErrorsNameTheFileAndTheProblem)
 {
-  EXPECT_NE(error_of(m_dir / "missing.toml").find("missing.toml does not exist"), std::string::npos);
+  EXPECT_NE(error_of(m_dir / "missing.toml").find("missing.toml does not exist"),
+            std::string::npos);
   const std::string typo = error_of(variant("fiber_modulus_mpa", "fibre_modulus_mpa"));
   EXPECT_NE(typo.find("[material]: unknown key 'fibre_modulus_mpa'"), std::string::npos) << typo;
   EXPECT_NE(typo.find("scene.toml"), std::string::npos) << typo;
@@ -73,24 +77,29 @@ TEST_F(SceneFile, ErrorsNameTheFileAndTheProblem)
   EXPECT_NE(syntax.find("scene.toml:"), std::string::npos) << syntax;
   EXPECT_NE(error_of(variant("shape = \"rectangle\"", "shape = \"hexagon\"")).find("shape must be"),
             std::string::npos);
-  EXPECT_NE(error_of(variant("fiber_poisson = 0.45", "fiber_poisson = 3.0")).find("positive definite"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(variant("fiber_poisson = 0.45", "fiber_poisson = 3.0")).find("positive definite"),
+      std::string::npos);
   EXPECT_NE(error_of(variant("max_turn_deg = 45.0", "max_turn_deg = 270.0")).find("max_turn_deg"),
             std::string::npos);
-  EXPECT_NE(error_of(variant("box_mm = [-5.01, -5.01, -4.99, 5.01]", "box_mm = [-9.0, -9.0, -8.0, -8.0]"))
-                .find("[[traction]] #1 contains no boundary side"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(variant("box_mm = [-5.01, -5.01, -4.99, 5.01]", "box_mm = [-9.0, -9.0, -8.0, -8.0]"))
+          .find("[[traction]] #1 contains no boundary side"),
+      std::string::npos);
   EXPECT_NE(error_of(variant("time_step_s = 1e-3", "time_step_s = -1.0")).find("time_step_s"),
             std::string::npos);
-  EXPECT_NE(error_of(variant("min_angle_deg = 10.0", "min_angle_deg = 25.0")).find("below min_angle_deg"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(variant("min_angle_deg = 10.0", "min_angle_deg = 25.0")).find("below min_angle_deg"),
+      std::string::npos);
 }
 
-TEST_F(SceneFile, PerElementFibersMustMatchTheMesh)
+TEST_F(MembraneSceneFile, PerElementFibersMustMatchTheMesh)
 {
   std::ofstream(m_dir / "fibers.txt") << "10 20 30\n";
-  const fs::path file = variant("kind = \"uniform\"\nangle_deg = 45.0", "kind = \"per_element\"\npath = \"fibers.txt\"");
-  EXPECT_NE(error_of(file).find("holds 3 angles but the mesh has"), std::string::npos) << error_of(file);
+  const fs::path file = variant("kind = \"uniform\"\nangle_deg = 45.0",
+                                "kind = \"per_element\"\npath = \"fibers.txt\"");
+  EXPECT_NE(error_of(file).find("holds 3 angles but the mesh has"), std::string::npos)
+      << error_of(file);
   std::ofstream(m_dir / "fibers.txt") << "10 twenty\n";
   EXPECT_NE(error_of(file).find("'twenty'"), std::string::npos);
 }

@@ -24,7 +24,10 @@ MembraneMaterial lens_like()
 }
 
 /// Voigt index of the tensor pair (i, j): 00 -> 0, 11 -> 1, 01 and 10 -> 2.
-int voigt(int i, int j) { return i == j ? i : 2; }
+int voigt(int i, int j)
+{
+  return i == j ? i : 2;
+}
 
 /// C(theta) by rotating the fourth-order tensor of the fiber-frame stiffness, independently
 /// of the closed form: C'_ijkl = R_ia R_jb R_kc R_ld C_abcd, with R's columns the fiber and

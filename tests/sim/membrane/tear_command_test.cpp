@@ -18,10 +18,12 @@ struct LigsimRun {
   std::string output;
 };
 
-LigsimRun run_ligsim(const std::string& arguments)
+/// Runs ligsim with `arguments`, its output captured in `log` (one per test: ctest runs them
+/// in parallel).
+LigsimRun run_ligsim(const std::string& arguments, const fs::path& log)
 {
-  const fs::path log = fs::temp_directory_path() / "ligsim_tear_command_test.log";
-  const std::string command = std::string(LIGSIM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const std::string command =
+      std::string(LIGSIM_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
   LigsimRun run;
   const int raw = std::system(command.c_str());
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -40,7 +42,8 @@ TEST(TearCommand, WritesFramesPngsAndSummary)
   const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test";
   fs::remove_all(out);
   const LigsimRun run = run_ligsim("-q tear " + scene("capsulorhexis") + " --out " + out.string() +
-                             " --max-steps 40 --frame-every 20 --png-size 200");
+                                       " --max-steps 40 --frame-every 20 --png-size 200",
+                                   out.string() + ".log");
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* file : {"frames.pvd", "summary.json", "frame_00000.vtu", "frame_00000.png",
                            "frame_00001.vtu", "frame_00002.png"})
@@ -55,31 +58,37 @@ TEST(TearCommand, WritesFramesPngsAndSummary)
   EXPECT_GT(results.at("ms_per_step").get<double>(), 0.0);
   EXPECT_GT(results.at("elements").get<int>(), 1500);
   EXPECT_GE(results.at("min_angle_deg").get<double>(), 10.0);
-  for (const char* key : {"propagation_events", "tear_direction_deg", "tear_radius_cv", "separated"})
+  for (const char* key :
+       {"propagation_events", "tear_direction_deg", "tear_radius_cv", "separated"})
     EXPECT_TRUE(results.contains(key)) << key;
   fs::remove_all(out);
+  fs::remove(out.string() + ".log");
 }
 
 TEST(TearCommand, NoPngMeansNoPng)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_nopng";
   fs::remove_all(out);
-  const LigsimRun run = run_ligsim("-q tear " + scene("square-sheet-90") + " --out " + out.string() +
-                             " --max-steps 5 --no-png");
+  const LigsimRun run = run_ligsim("-q tear " + scene("square-sheet-90") + " --out " +
+                                       out.string() + " --max-steps 5 --no-png",
+                                   out.string() + ".log");
   ASSERT_EQ(run.status, 0) << run.output;
   EXPECT_TRUE(fs::is_regular_file(out / "frame_00001.vtu"));
   EXPECT_FALSE(fs::exists(out / "frame_00000.png"));
   fs::remove_all(out);
+  fs::remove(out.string() + ".log");
 }
 
 TEST(TearCommand, BadSceneIsOneLineAndNoOutput)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_bad";
   fs::remove_all(out);
-  const LigsimRun run = run_ligsim("tear /nonexistent/scene.toml --out " + out.string());
+  const LigsimRun run =
+      run_ligsim("tear /nonexistent/scene.toml --out " + out.string(), out.string() + ".log");
   EXPECT_EQ(run.status, 1);
   EXPECT_EQ(run.output, "ligsim: error: scene file /nonexistent/scene.toml does not exist\n");
   EXPECT_FALSE(fs::exists(out));
+  fs::remove(out.string() + ".log");
 }
 
 } // namespace

@@ -154,8 +154,10 @@ TEST(MembraneTopology, TwoHundredRandomSplitsKeepAValidMeshAndDynamics)
   int splits = 0, advances = 0;
   while (advances < 200) {
     if (tips.empty() || unit(random) < 0.1) { // start a crack in a random untouched element
-      const int tri = static_cast<int>(unit(random) * mesh.triangle_count()) % mesh.triangle_count();
-      const auto started = initiate_crack(mesh, tri, Vec2(std::cos(angle(random)), std::sin(angle(random))), settings);
+      const int tri =
+          static_cast<int>(unit(random) * mesh.triangle_count()) % mesh.triangle_count();
+      const auto started = initiate_crack(
+          mesh, tri, Vec2(std::cos(angle(random)), std::sin(angle(random))), settings);
       for (const CrackAdvance& advance : started) {
         apply_edit(mesh, elements, advance.edit, areal_density);
         if (advance.continues)
@@ -181,9 +183,10 @@ TEST(MembraneTopology, TwoHundredRandomSplitsKeepAValidMeshAndDynamics)
         tips.erase(tips.begin() + static_cast<long>(pick));
     }
     const NodeIncidence incidence = build_incidence(mesh);
-    tips.erase(std::remove_if(tips.begin(), tips.end(),
-                              [&](const CrackTip& t) { return !is_enclosed(mesh, incidence, t.node); }),
-               tips.end());
+    tips.erase(
+        std::remove_if(tips.begin(), tips.end(),
+                       [&](const CrackTip& t) { return !is_enclosed(mesh, incidence, t.node); }),
+        tips.end());
     ASSERT_EQ(manifold_problem(mesh), "") << "after " << advances << " advances";
     ASSERT_NEAR(total_area(mesh), area, 1e-12 * area);
     ASSERT_GE(min_rest_angle(mesh), bound - 1e-12);
