@@ -184,9 +184,8 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   return false;
 }
 
-bool StaticSolver::advance(Eigen::VectorXd& x, double t0, double t1, StepReport& report)
+bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
 {
-  (void)t0;
   if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
     return false;
 
@@ -315,7 +314,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       const Eigen::VectorXd saved = x;
       m_failure.clear();
       ++report.substeps;
-      if (advance(x, t, t_next, report)) {
+      if (advance(x, t_next, report)) {
         t = t_next;
         dt = std::min(nominal, 2.0 * dt);
         continue;

@@ -96,8 +96,8 @@ private:
     double total_energy = 0.0; ///< strain energy minus the work of the external forces
   };
 
-  /// Brings the state from load factor t0 to t1; false (with m_failure set) when it cannot.
-  bool advance(Eigen::VectorXd& x, double t0, double t1, StepReport& report);
+  /// Brings the converged state to load factor t1; false (with m_failure set) when it cannot.
+  bool advance(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Moves the prescribed DOFs to their targets at t1, the free ones by the linear predictor.
   bool move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Newton direction for the free DOFs; handles projection. False when none is found.

@@ -115,7 +115,7 @@ TEST(StaticSolver, CutsBackALoadStepThatFails)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 3.0});
+  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 6.0});
   NewtonSettings settings;
   settings.load_steps = 1;
   settings.max_iterations = 4; // too few for the full load at once
