@@ -161,7 +161,6 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
 
   std::vector<TearEvent> events;
   std::vector<CrackTip> new_tips;
-  std::vector<bool> tip_done(m_tips.size(), false);
   std::set<int> changed; // triangles rewritten this step: their stresses are stale
   bool initiated = false;
   for (const Candidate& candidate : candidates) {
@@ -169,9 +168,12 @@ std::vector<TearEvent> Tearing::step(MembraneMesh& mesh, CorotationalElements& e
       break;
     if (candidate.tip >= 0) {
       CrackTip& tip = m_tips[candidate.tip];
+      if (!is_enclosed(mesh, build_incidence(mesh), tip.node)) {
+        tip.node = -1; // an earlier event of this step reached this tip
+        continue;
+      }
       const auto advance =
           advance_crack(mesh, tip.node, candidate.direction, m_settings.propagation);
-      tip_done[candidate.tip] = true;
       if (!advance) {
         tip.node = -1; // the crack cannot go on from here
         continue;
