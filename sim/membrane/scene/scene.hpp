@@ -44,6 +44,12 @@ struct Region {
   bool contains(const Vec2& p) const;
 };
 
+/// Nodes with a prescribed velocity: zero (fixed) unless given.
+struct ConstraintSpec {
+  Region region;
+  Vec2 velocity_mm_per_s = Vec2::Zero();
+};
+
 /// A dead load per unit rest length on the boundary sides inside a region, ramped in time:
 /// min(rate t, max) along `direction`.
 struct TractionSpec {
@@ -88,7 +94,7 @@ struct Scene {
   FiberSpec fibers;
   TearSettings tearing;
   SolverSettings solver;
-  std::vector<Region> fixed;
+  std::vector<ConstraintSpec> fixed;
   std::vector<TractionSpec> tractions;
   std::optional<GraspSpec> grasp;
   std::vector<CutSpec> cuts;

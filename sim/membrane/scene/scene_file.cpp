@@ -318,8 +318,8 @@ Scene load_scene(const std::filesystem::path& file)
     return readers;
   };
   for (const TableReader& fixed : array_of_tables("fixed")) {
-    fixed.only({"box_mm", "outside_radius_mm", "centre_mm"});
-    scene.fixed.push_back(read_region(fixed));
+    fixed.only({"box_mm", "outside_radius_mm", "centre_mm", "velocity_mm_per_s"});
+    scene.fixed.push_back({read_region(fixed), fixed.point("velocity_mm_per_s", Vec2::Zero())});
   }
   for (const TableReader& traction : array_of_tables("traction")) {
     traction.only({"box_mm", "outside_radius_mm", "centre_mm", "direction", "rate_n_per_mm_per_s",

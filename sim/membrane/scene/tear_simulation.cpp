@@ -72,8 +72,9 @@ TearSimulation::TearSimulation(const Scene& scene)
   for (std::size_t i = 0; i < scene.fixed.size(); ++i) {
     int count = 0;
     for (int v = 0; v < m_mesh.node_count(); ++v)
-      if (scene.fixed[i].contains(m_mesh.rest[v])) {
+      if (scene.fixed[i].region.contains(m_mesh.rest[v])) {
         m_mesh.constraint[v] = NodeConstraint::prescribed;
+        m_mesh.prescribed_velocity[v] = scene.fixed[i].velocity_mm_per_s;
         ++count;
       }
     if (count == 0)

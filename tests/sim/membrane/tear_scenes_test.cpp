@@ -117,6 +117,34 @@ TEST(TearScenes, AnIntactSheetTearsFromAnInitiation)
   expect_sound_mesh(intact);
 }
 
+TEST(TearScenes, PrescribedVelocitiesDriveTheSides)
+{
+  // The 90-degree sheet pulled by moving its sides instead of loading them.
+  Scene scene = load_scene(scene_file("square-sheet-90"));
+  scene.tractions.clear();
+  for (double side : {-1.0, 1.0}) {
+    ConstraintSpec moving;
+    moving.region.box_mm = Eigen::Vector4d(5.0 * side - 0.01, -5.01, 5.0 * side + 0.01, 5.01);
+    moving.velocity_mm_per_s = Vec2(0.2 * side, 0.0);
+    scene.fixed.push_back(moving);
+  }
+  TearSimulation simulation(scene);
+  for (int step = 0; step < 100; ++step)
+    simulation.step();
+  const MembraneMesh& mesh = simulation.mesh();
+  for (int v = 0; v < mesh.node_count(); ++v)
+    if (std::abs(std::abs(mesh.rest[v].x()) - 5.0) < 1e-9) {
+      const double expected = 0.2 * 0.1 * (mesh.rest[v].x() > 0.0 ? 1.0 : -1.0);
+      ASSERT_NEAR(mesh.position[v].x() - mesh.rest[v].x(), expected, 1e-12) << v;
+    }
+  // Stretched along x: the mean sigma_x is tensile, below E_T times the 0.4 % imposed strain.
+  double mean_sigma_x = 0.0;
+  for (int tri = 0; tri < mesh.triangle_count(); ++tri)
+    mean_sigma_x += simulation.elements().stress(tri)[0] / mesh.triangle_count();
+  EXPECT_GT(mean_sigma_x, 0.0);
+  EXPECT_LT(mean_sigma_x, 2.0 * 0.004 * 1.5);
+}
+
 TEST(TearScenes, AlongEdgesOnlyTheMeshIsNeverSplit)
 {
   // Mode 1: the crack follows existing edges, so no element is created.
