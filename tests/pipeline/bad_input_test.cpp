@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <unistd.h>
 
 using namespace ligsim::test;
 namespace fs = std::filesystem;
@@ -44,7 +45,7 @@ void expect_clean_failure(const std::string& arguments, const fs::path& out, con
 
 fs::path write_text(const std::string& name, const std::string& text)
 {
-  const fs::path file = fs::temp_directory_path() / name;
+  const fs::path file = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
   std::ofstream(file) << text;
   return file;
 }
@@ -72,7 +73,7 @@ TEST(BuildBadInput, OpenSurface)
 TEST(BuildBadInput, NanCoordinate)
 {
   // A binary STL tetrahedron, one corner NaN, as a broken export writes it.
-  const fs::path file = fs::temp_directory_path() / "ligsim_nan.stl";
+  const fs::path file = fs::temp_directory_path() / (std::to_string(::getpid()) + "_ligsim_nan.stl");
   {
     const float nan = std::nanf("");
     const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}};

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace ligsim::test {
 
@@ -17,8 +18,10 @@ struct CliResult {
 
 inline CliResult run_ligsim(const std::string& arguments)
 {
-  const std::filesystem::path log =
-    std::filesystem::temp_directory_path() / ("ligsim_cli_" + std::to_string(std::rand()) + ".log");
+  // ctest runs test processes in parallel: the log's name carries the process id.
+  static int calls = 0;
+  const std::filesystem::path log = std::filesystem::temp_directory_path() /
+                                    ("ligsim_cli_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
   const std::string command = std::string(LIGSIM_BINARY) + " " + arguments + " 2> " + log.string() + " > /dev/null";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
