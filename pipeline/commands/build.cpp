@@ -29,7 +29,7 @@ struct BuildOptions {
   double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
   double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
   double in_situ = kUnset;
-  std::string field_method;
+  std::string field_method, span;
   bool force = false;
 };
 
@@ -55,6 +55,8 @@ void add_options(CLI::App* command, BuildOptions& o)
   auto* stages = "Stage parameters";
   command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")->group(stages);
   command->add_option("--alpha", o.alpha, "centerline medial weight in [0, 1] (default 0.1)")->group(stages);
+  command->add_option("--span", o.span, "centerline between the areas' means (default) or through the whole attachments")
+    ->check(CLI::IsMember({"means", "attachments"}))->group(stages);
   command->add_option("--field-method", o.field_method, "geometric (default) or laplace")->group(stages);
   command->add_option("--cell-size", o.cell_size, "tet mesh max circumradius, mm")->group(stages);
   command->add_option("--facet-size", o.facet_size, "tet mesh max surface Delaunay ball radius, mm")->group(stages);
@@ -100,6 +102,8 @@ BuildConfig resolve_config(const BuildOptions& o)
   apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array, o.tibia_end, o);
   set_if(o.voxel, config.voxelize.spacing_mm);
   set_if(o.alpha, config.centerline.alpha);
+  if (!o.span.empty())
+    config.centerline.span = centerline::parse_span(o.span);
   if (!o.field_method.empty())
     config.field.method = field::parse_method(o.field_method);
   set_if(o.cell_size, config.tetmesh.cell_size_mm);
