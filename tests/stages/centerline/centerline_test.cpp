@@ -41,7 +41,9 @@ TEST(Centerline, MedialPathOnACylinderFollowsTheAxis)
   for (const Eigen::Matrix3d& rotation : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), oblique()}) {
     const auto v = test::voxelise(test::transformed(synthetic::cylinder(3.0, 30.0), rotation, {0.11, 0.07, 0.0}), 0.4);
     const auto line = extract(v, 1.0);
-    EXPECT_LE(max_deviation(line, v.shape.axis, 3.0), v.mask.spacing);
+    const double deviation = max_deviation(line, v.shape.axis, 3.0);
+    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm", std::to_string(deviation));
+    EXPECT_LE(deviation, v.mask.spacing);
   }
 }
 
@@ -49,7 +51,9 @@ TEST(Centerline, MedialPathOnATorusTubeFollowsTheArc)
 {
   const auto v = test::voxelise(synthetic::torus_tube(20.0, 3.0, 120.0), 0.4);
   const auto line = extract(v, 1.0);
-  EXPECT_LE(max_deviation(line, v.shape.axis, 3.0), v.mask.spacing);
+  const double deviation = max_deviation(line, v.shape.axis, 3.0);
+  RecordProperty("max_deviation_mm", std::to_string(deviation));
+  EXPECT_LE(deviation, v.mask.spacing);
   // The tangent follows the arc's tangent.
   double worst_deg = 0.0;
   for (Eigen::Index i = 2; i + 2 < line.points.rows(); ++i) {
@@ -58,6 +62,7 @@ TEST(Centerline, MedialPathOnATorusTubeFollowsTheArc)
     const double c = std::abs(line.tangents.row(i).dot(v.shape.axis.tangent(u)));
     worst_deg = std::max(worst_deg, std::acos(std::min(1.0, c)) * 180 / 3.14159265358979);
   }
+  RecordProperty("worst_tangent_deg", std::to_string(worst_deg));
   EXPECT_LT(worst_deg, 5.0);
 }
 
@@ -75,6 +80,7 @@ TEST(Centerline, ShortestPathOnACylinderIsTheStraightSegment)
       const double s = (p - a).dot(b - a) / (b - a).squaredNorm();
       worst = std::max(worst, (p - (a + s * (b - a))).norm());
     }
+    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm", std::to_string(worst));
     EXPECT_LE(worst, v.mask.spacing);
   }
 }

@@ -61,6 +61,7 @@ TEST(Fibers, FollowTheAxisOfACylinder)
     double worst = 0.0;
     for (Eigen::Index t = 0; t < c.mesh.T.rows(); ++t)
       worst = std::max(worst, angle_deg(c.fibers.directions.row(t).transpose(), Eigen::Vector3d::UnitZ()));
+    RecordProperty(field::to_string(method) + "_worst_deg", std::to_string(worst));
     EXPECT_LT(worst, 2.0) << field::to_string(method);
   }
 }
@@ -75,6 +76,7 @@ TEST(Fibers, FollowTheCircleTangentOfATorusTube)
       test::distance_to_axis(c.v.shape.axis, centroid(c.mesh, t), &u);
       sum += angle_deg(c.fibers.directions.row(t).transpose(), c.v.shape.axis.tangent(u));
     }
+    RecordProperty(field::to_string(method) + "_mean_deg", std::to_string(sum / c.mesh.T.rows()));
     EXPECT_LT(sum / c.mesh.T.rows(), 5.0) << field::to_string(method);
   }
 }

@@ -30,6 +30,7 @@ TEST(Field, GeometricIsTheRelativeRadiusOnACylinder)
     if (p.z() > 0.0 && p.z() < L)
       worst = std::max(worst, std::abs(d - std::hypot(p.x(), p.y()) / R));
   }
+  RecordProperty("worst_abs_error", std::to_string(worst));
   EXPECT_LT(worst, 0.005); // the 128-gon's sag is 0.03 %
   EXPECT_EQ(field.rays_missed, 0);
 }
