@@ -6,6 +6,7 @@
 
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
+#include <boost/property_map/function_property_map.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +17,7 @@ namespace ligsim::centerline {
 namespace {
 
 using VertexIndex = std::uint32_t;
-struct EdgeWeight {
-  float weight;
-};
-using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, EdgeWeight,
+using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
                                                  boost::no_property, VertexIndex, VertexIndex>;
 
 /// Distances below this fraction of a voxel are clamped, so 1/d^2 stays finite on the surface.
@@ -105,39 +103,39 @@ struct ShortestPaths {
 /// The inside voxels as a graph with the 26-neighbourhood and eq. 25's step costs.
 class VoxelGraph {
 public:
-  VoxelGraph(const Mask& mask, const ScalarGrid& distance, const CostModel& model)
-    : m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
+  VoxelGraph(const Mask& mask, const ScalarGrid& distance)
+    : m_mask(mask)
+    , m_distance(distance)
+    , m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
   {
     for (std::size_t v = 0; v < mask.values.size(); ++v)
       if (mask.values[v]) {
         m_node_of[v] = static_cast<VertexIndex>(m_voxel_of.size());
         m_voxel_of.push_back(v);
       }
-    // Edges in source order, as the CSR constructor wants them.
-    std::vector<std::pair<VertexIndex, VertexIndex>> edges;
-    std::vector<EdgeWeight> weights;
-    edges.reserve(m_voxel_of.size() * 26);
-    weights.reserve(m_voxel_of.size() * 26);
+    // Only the topology is stored (4 bytes an edge once built); step costs are computed when
+    // Dijkstra asks, from the two voxels' distances.
+    std::vector<VertexIndex> sources, targets;
+    sources.reserve(m_voxel_of.size() * 26);
+    targets.reserve(m_voxel_of.size() * 26);
     for (std::size_t node = 0; node < m_voxel_of.size(); ++node) {
       const Eigen::Vector3i a = mask.ijk(m_voxel_of[node]);
-      const double d_a = distance.values[m_voxel_of[node]];
       for (const Eigen::Vector3i& offset : neighbourhood_26()) {
         const Eigen::Vector3i b = a + offset;
         if (!mask.contains(b.x(), b.y(), b.z()) || !mask(b.x(), b.y(), b.z()))
           continue;
-        const std::size_t voxel_b = mask.index(b.x(), b.y(), b.z());
-        const double length = mask.spacing * offset.cast<double>().norm();
-        edges.emplace_back(static_cast<VertexIndex>(node), m_node_of[voxel_b]);
-        weights.push_back({static_cast<float>(model.step(length, d_a, distance.values[voxel_b]))});
+        sources.push_back(static_cast<VertexIndex>(node));
+        targets.push_back(m_node_of[mask.index(b.x(), b.y(), b.z())]);
       }
     }
-    m_graph = Graph(boost::edges_are_sorted, edges.begin(), edges.end(), weights.begin(),
+    m_graph = Graph(boost::construct_inplace_from_sources_and_targets, sources, targets,
                     static_cast<VertexIndex>(m_voxel_of.size()));
   }
 
   VertexIndex node(std::size_t voxel) const { return m_node_of[voxel]; }
 
-  ShortestPaths shortest_paths(std::size_t source_voxel) const
+  /// Dijkstra from `source_voxel` with the step costs of `model`.
+  ShortestPaths shortest_paths(std::size_t source_voxel, const CostModel& model) const
   {
     ShortestPaths result{node(source_voxel), std::vector<VertexIndex>(m_voxel_of.size()),
                          std::vector<float>(m_voxel_of.size())};
@@ -146,7 +144,8 @@ public:
       m_graph, result.source,
       boost::predecessor_map(boost::make_iterator_property_map(result.predecessor.begin(), index))
         .distance_map(boost::make_iterator_property_map(result.cost.begin(), index))
-        .weight_map(boost::get(&EdgeWeight::weight, m_graph)));
+        .weight_map(boost::make_function_property_map<Graph::edge_descriptor, float>(
+          [this, &model](const Graph::edge_descriptor& edge) { return step_cost(edge, model); })));
     return result;
   }
 
@@ -176,6 +175,16 @@ public:
   }
 
 private:
+  float step_cost(const Graph::edge_descriptor& edge, const CostModel& model) const
+  {
+    const std::size_t a = m_voxel_of[boost::source(edge, m_graph)];
+    const std::size_t b = m_voxel_of[boost::target(edge, m_graph)];
+    const double length = m_mask.spacing * (m_mask.ijk(a) - m_mask.ijk(b)).cast<double>().norm();
+    return static_cast<float>(model.step(length, m_distance.values[a], m_distance.values[b]));
+  }
+
+  const Mask& m_mask;
+  const ScalarGrid& m_distance;
   std::vector<VertexIndex> m_node_of;
   std::vector<std::size_t> m_voxel_of;
   Graph m_graph;
@@ -380,13 +389,13 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
   if (start_area.rows() == 0 || end_area.rows() == 0)
     fail("the centerline needs two non-empty attachment areas");
   const CostModel model = cost_model(distance, parameters.alpha);
-  const VoxelGraph graph(mask, distance, model);
+  const VoxelGraph graph(mask, distance);
 
   std::size_t start_voxel = nearest_inside(mask, start_area.colwise().mean().transpose());
   std::size_t end_voxel = nearest_inside(mask, end_area.colwise().mean().transpose());
   if (start_voxel == end_voxel)
     fail("the two attachment areas map to the same voxel: no centerline between them");
-  const ShortestPaths from_start = graph.shortest_paths(start_voxel);
+  const ShortestPaths from_start = graph.shortest_paths(start_voxel, model);
   if (!from_start.reaches(graph.node(end_voxel)))
     fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
          "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of the "
@@ -398,11 +407,13 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
   std::vector<std::size_t> voxels;
   float path_cost = 0.0f;
   if (parameters.span == Span::attachments) {
-    // Through the whole areas: the end is the end area's voxel farthest (in path cost) from the
+    // Through the whole areas: the end is the end area's voxel farthest along the shape (path
+    // length inside it, alpha = 0: the medial term would favour voxels at the surface) from the
     // start; the start is the start area's voxel farthest from that end.
-    end_voxel = graph.farthest(from_start, nearest_inside_voxels(mask, end_area));
-    const ShortestPaths from_end = graph.shortest_paths(end_voxel);
-    start_voxel = graph.farthest(from_end, nearest_inside_voxels(mask, start_area));
+    const CostModel length_only{0.0, model.d_max, model.d_min};
+    end_voxel = graph.farthest(graph.shortest_paths(start_voxel, length_only), nearest_inside_voxels(mask, end_area));
+    start_voxel = graph.farthest(graph.shortest_paths(end_voxel, length_only), nearest_inside_voxels(mask, start_area));
+    const ShortestPaths from_end = graph.shortest_paths(end_voxel, model);
     voxels = graph.path_to_source(from_end, start_voxel);
     path_cost = from_end.cost[graph.node(start_voxel)];
   } else {

@@ -15,9 +15,9 @@ namespace ligsim::centerline {
 enum class Span {
   /// The paper's: from the voxel nearest the mean of A1 to the one nearest the mean of A2.
   means,
-  /// Through the whole attachment areas: from the A1 voxel farthest (in path cost) from the
-  /// A2 end to the A2 voxel farthest from the A1 mean, so the line also runs along a long
-  /// insertion (the MCL's tibial one) instead of stopping at its middle.
+  /// Through the whole attachment areas: from the A1 voxel farthest (in path length inside the
+  /// shape) from the A2 end to the A2 voxel farthest from the A1 mean, so the line also runs
+  /// along a long insertion (the MCL's tibial one) instead of stopping at its middle.
   attachments,
 };
 
