@@ -1,5 +1,7 @@
 #include "sim/membrane/model/corotational_elements.hpp"
 
+#include "tests/sim/membrane/test_material.hpp"
+
 #include "sim/membrane/mesh/generate.hpp"
 #include "sim/membrane/model/stiffness.hpp"
 
@@ -11,18 +13,6 @@
 
 namespace ligsim::membrane {
 namespace {
-
-MembraneMaterial material()
-{
-  MembraneMaterial m;
-  m.fiber_modulus_mpa = 6.0;
-  m.transverse_modulus_mpa = 2.0;
-  m.fiber_poisson = 0.45;
-  m.shear_modulus_mpa = 0.7;
-  m.thickness_mm = 0.1;
-  m.density_t_per_mm3 = 1e-6;
-  return m;
-}
 
 MembraneMesh sheet(double fiber_deg)
 {
@@ -50,7 +40,7 @@ double max_norm(const std::vector<Vec2>& values)
 TEST(CorotationalElements, RigidMotionsMakeNoForceAndNoStress)
 {
   MembraneMesh mesh = sheet(30.0);
-  CorotationalElements elements(material());
+  CorotationalElements elements(test::lens_like_material());
   elements.rebuild(mesh);
   for (double degrees : {0.0, 37.0, 90.0, 170.0, -120.0}) {
     const Eigen::Rotation2Dd rotation(degrees * M_PI / 180.0);
@@ -64,7 +54,7 @@ TEST(CorotationalElements, RigidMotionsMakeNoForceAndNoStress)
 
 TEST(CorotationalElements, UniformStretchGivesTheMaterialStressInEveryElementAnyRotation)
 {
-  const MembraneMaterial m = material();
+  const MembraneMaterial m = test::lens_like_material();
   MembraneMesh mesh = sheet(30.0);
   CorotationalElements elements(m);
   elements.rebuild(mesh);
@@ -88,7 +78,7 @@ TEST(CorotationalElements, InteriorNodesAreInEquilibriumUnderUniformStress)
 {
   // The patch test: under a uniform strain the internal forces cancel at interior nodes.
   MembraneMesh mesh = sheet(45.0);
-  CorotationalElements elements(material());
+  CorotationalElements elements(test::lens_like_material());
   elements.rebuild(mesh);
   Eigen::Matrix2d stretch;
   stretch << 1.01, 0.002, 0.0, 0.995;
@@ -113,7 +103,7 @@ TEST(CorotationalElements, TangentMatchesFiniteDifferencesOfTheForces)
   // At a rigidly rotated rest state dR/dx does not contribute (the stress is zero), so the
   // tangent R K_e R^T is the exact derivative of the forces.
   MembraneMesh mesh = sheet(60.0);
-  CorotationalElements elements(material());
+  CorotationalElements elements(test::lens_like_material());
   elements.rebuild(mesh);
   const Eigen::Rotation2Dd rotation(0.7);
   for (int v = 0; v < mesh.node_count(); ++v)
@@ -147,7 +137,7 @@ TEST(CorotationalElements, TangentMatchesFiniteDifferencesOfTheForces)
 TEST(CorotationalElements, TangentIsSymmetricAndItsDiagonalIsRight)
 {
   MembraneMesh mesh = sheet(20.0);
-  CorotationalElements elements(material());
+  CorotationalElements elements(test::lens_like_material());
   elements.rebuild(mesh);
   Eigen::Matrix2d deformation;
   deformation << 0.9, -0.5, 0.45, 0.95;

@@ -1,5 +1,7 @@
 #include "sim/membrane/model/implicit_euler.hpp"
 
+#include "tests/sim/membrane/test_material.hpp"
+
 #include "common/error.hpp"
 #include "sim/membrane/mesh/generate.hpp"
 #include "sim/membrane/model/stiffness.hpp"
@@ -12,18 +14,6 @@
 namespace ligsim::membrane {
 namespace {
 
-MembraneMaterial material()
-{
-  MembraneMaterial m;
-  m.fiber_modulus_mpa = 6.0;
-  m.transverse_modulus_mpa = 2.0;
-  m.fiber_poisson = 0.45;
-  m.shear_modulus_mpa = 0.7;
-  m.thickness_mm = 0.1;
-  m.density_t_per_mm3 = 1e-6;
-  return m;
-}
-
 struct Sheet {
   MembraneMesh mesh;
   CorotationalElements elements;
@@ -31,14 +21,14 @@ struct Sheet {
 
 Sheet pulled_sheet(double fiber_deg)
 {
-  Sheet sheet{rectangle_mesh(4.0, 2.0, 0.4, 0.15, 8), CorotationalElements(material())};
+  Sheet sheet{rectangle_mesh(4.0, 2.0, 0.4, 0.15, 8), CorotationalElements(test::lens_like_material())};
   for (double& angle : sheet.mesh.fiber_angle_rad)
     angle = fiber_deg * M_PI / 180.0;
   sheet.elements.rebuild(sheet.mesh);
   std::vector<int> all(sheet.mesh.node_count());
   for (int v = 0; v < sheet.mesh.node_count(); ++v)
     all[v] = v;
-  const MembraneMaterial m = material();
+  const MembraneMaterial m = test::lens_like_material();
   update_lumped_masses(sheet.mesh, build_incidence(sheet.mesh),
                        m.density_t_per_mm3 * m.thickness_mm, all);
   return sheet;
@@ -78,7 +68,7 @@ TEST(MembraneImplicitEuler, FreeSheetUnderOppositeTractionsSettlesToUniaxialStre
   for (int step = 0; step < 150; ++step)
     euler.step(sheet.mesh, sheet.elements, loads);
 
-  const MembraneMaterial m = material();
+  const MembraneMaterial m = test::lens_like_material();
   const double sigma = per_length / m.thickness_mm;
   for (int tri = 0; tri < sheet.mesh.triangle_count(); ++tri)
     ASSERT_LT((sheet.elements.stress(tri) - Eigen::Vector3d(sigma, 0.0, 0.0)).norm(), 2e-3 * sigma)

@@ -1,5 +1,7 @@
 #include "sim/membrane/model/stiffness.hpp"
 
+#include "tests/sim/membrane/test_material.hpp"
+
 #include "common/error.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -10,18 +12,6 @@
 
 namespace ligsim::membrane {
 namespace {
-
-MembraneMaterial lens_like()
-{
-  MembraneMaterial m;
-  m.fiber_modulus_mpa = 6.0;
-  m.transverse_modulus_mpa = 2.0;
-  m.fiber_poisson = 0.45;
-  m.shear_modulus_mpa = 0.7;
-  m.thickness_mm = 0.1;
-  m.density_t_per_mm3 = 1e-9;
-  return m;
-}
 
 /// Voigt index of the tensor pair (i, j): 00 -> 0, 11 -> 1, 01 and 10 -> 2.
 int voigt(int i, int j)
@@ -54,7 +44,7 @@ Eigen::Matrix3d tensor_rotation(const Eigen::Matrix3d& q, double theta)
 
 TEST(MembraneStiffness, EqualsTheFiberFrameStiffnessRotatedAsATensor)
 {
-  const MembraneMaterial m = lens_like();
+  const MembraneMaterial m = test::lens_like_material(1e-9);
   const Eigen::Matrix3d q = fiber_frame_stiffness(m);
   for (double degrees = -180.0; degrees <= 180.0; degrees += 7.5) {
     const double theta = degrees * M_PI / 180.0;
@@ -67,7 +57,7 @@ TEST(MembraneStiffness, EqualsTheFiberFrameStiffnessRotatedAsATensor)
 TEST(MembraneStiffness, FiberFrameStiffnessInvertsTheCompliance)
 {
   // Plane-stress compliance of the fiber frame: eps_F = sigma_F / E_F - nu_F sigma_T / E_F, ...
-  const MembraneMaterial m = lens_like();
+  const MembraneMaterial m = test::lens_like_material(1e-9);
   Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
   compliance(0, 0) = 1.0 / m.fiber_modulus_mpa;
   compliance(1, 1) = 1.0 / m.transverse_modulus_mpa;
@@ -81,7 +71,7 @@ TEST(MembraneStiffness, IsSymmetricPositiveDefiniteForValidParameters)
   std::mt19937 random(5);
   std::uniform_real_distribution<double> modulus(0.1, 100.0), unit(0.0, 1.0), angle(-M_PI, M_PI);
   for (int trial = 0; trial < 500; ++trial) {
-    MembraneMaterial m = lens_like();
+    MembraneMaterial m = test::lens_like_material(1e-9);
     m.fiber_modulus_mpa = modulus(random);
     m.transverse_modulus_mpa = modulus(random);
     m.shear_modulus_mpa = modulus(random);
@@ -98,7 +88,7 @@ TEST(MembraneStiffness, IsSymmetricPositiveDefiniteForValidParameters)
 
 TEST(MembraneStiffness, ReducesToIsotropicPlaneStressWhenTheModuliAreEqual)
 {
-  MembraneMaterial m = lens_like();
+  MembraneMaterial m = test::lens_like_material(1e-9);
   const double e = 3.0, nu = 0.3;
   m.fiber_modulus_mpa = m.transverse_modulus_mpa = e;
   m.fiber_poisson = nu;
@@ -113,7 +103,7 @@ TEST(MembraneStiffness, ReducesToIsotropicPlaneStressWhenTheModuliAreEqual)
 
 TEST(MembraneStiffness, FiberAlongXGivesTheFiberModulusInX)
 {
-  const MembraneMaterial m = lens_like();
+  const MembraneMaterial m = test::lens_like_material(1e-9);
   // Uniaxial stress along the fibers: the strain along them is sigma / E_F.
   const Eigen::Matrix3d compliance = rotated_stiffness(m, 0.0).inverse();
   EXPECT_NEAR(1.0 / compliance(0, 0), m.fiber_modulus_mpa, 1e-12);
@@ -123,13 +113,13 @@ TEST(MembraneStiffness, FiberAlongXGivesTheFiberModulusInX)
 
 TEST(MembraneMaterial, RejectsParametersWithoutPositiveDefiniteStiffness)
 {
-  MembraneMaterial m = lens_like();
+  MembraneMaterial m = test::lens_like_material(1e-9);
   m.fiber_poisson = 2.0; // nu_F nu_T = 4 * 2 / 6 > 1
   EXPECT_THROW(validate(m, "scene"), InputError);
-  m = lens_like();
+  m = test::lens_like_material(1e-9);
   m.transverse_modulus_mpa = 0.0;
   EXPECT_THROW(validate(m, "scene"), InputError);
-  m = lens_like();
+  m = test::lens_like_material(1e-9);
   m.thickness_mm = -1.0;
   EXPECT_THROW(validate(m, "scene"), InputError);
 }

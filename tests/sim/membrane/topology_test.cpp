@@ -1,5 +1,7 @@
 #include "sim/membrane/mesh/topology.hpp"
 
+#include "tests/sim/membrane/test_material.hpp"
+
 #include "sim/membrane/crack/propagation.hpp"
 #include "sim/membrane/crack/tearing.hpp"
 #include "sim/membrane/mesh/generate.hpp"
@@ -31,18 +33,6 @@ bool inside(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c)
 {
   const double eps = -1e-12;
   return cross(b - a, p - a) >= eps && cross(c - b, p - b) >= eps && cross(a - c, p - c) >= eps;
-}
-
-MembraneMaterial material()
-{
-  MembraneMaterial m;
-  m.fiber_modulus_mpa = 6.0;
-  m.transverse_modulus_mpa = 2.0;
-  m.fiber_poisson = 0.45;
-  m.shear_modulus_mpa = 0.7;
-  m.thickness_mm = 0.1;
-  m.density_t_per_mm3 = 1e-6;
-  return m;
 }
 
 TEST(MembraneTopology, SplitSideKeepsTheAreaAndTheInheritedData)
@@ -138,7 +128,7 @@ TEST(MembraneTopology, TwoHundredRandomSplitsKeepAValidMeshAndDynamics)
   for (int v = 0; v < mesh.node_count(); ++v)
     if (mesh.rest[v].x() < -2.99)
       mesh.constraint[v] = NodeConstraint::prescribed;
-  const MembraneMaterial m = material();
+  const MembraneMaterial m = test::lens_like_material();
   const double areal_density = m.density_t_per_mm3 * m.thickness_mm;
   CorotationalElements elements(m);
   elements.rebuild(mesh);
