@@ -1,6 +1,7 @@
 #include "pipeline/build/build_config.hpp"
 
 #include "common/error.hpp"
+#include "pipeline/build/config_fields.hpp"
 
 #include <toml++/toml.h>
 
@@ -128,14 +129,29 @@ private:
   std::set<std::string> m_known;
 };
 
-void read_rule(Section&& section, attachments::Rule& rule)
+/// Reads each visited parameter from one section.
+struct TomlReader {
+  Section& section;
+
+  template <class T>
+  void operator()(const char* key, T& value) { section.read(key, value); }
+
+  template <class E>
+  void operator()(const char* key, Choice<E> choice)
+  {
+    std::string text = choice.name(choice.value);
+    section.read(key, text);
+    choice.value = choice.parse(text);
+  }
+};
+
+/// Reads the table `name` of `parent` with `visit_fields` and rejects keys it does not know.
+template <class P, class VisitFields>
+void read_section(const toml::table* parent, const char* name, const std::string& label,
+                  const fs::path& file, P& parameters, VisitFields visit_fields)
 {
-  section.read("rule", rule.rule);
-  section.read("indices", rule.indices);
-  section.read("array", rule.array);
-  section.read("distance_mm", rule.distance_mm);
-  section.read("end_length_mm", rule.end_length_mm);
-  section.read("end", rule.end);
+  Section section(parent ? parent->get_as<toml::table>(name) : nullptr, label, file);
+  visit_fields(parameters, TomlReader{section});
   section.reject_unknown();
 }
 
@@ -175,82 +191,47 @@ BuildConfig load_build_config(const fs::path& file)
   attachment_section.allow("femur");
   attachment_section.allow("tibia");
   attachment_section.reject_unknown();
-  read_rule(Section(table_at(attachments, "femur"), "attachments.femur", file), config.femur_attachment);
-  read_rule(Section(table_at(attachments, "tibia"), "attachments.tibia", file), config.tibia_attachment);
+  const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
+  read_section(attachments, "femur", "attachments.femur", file, config.femur_attachment, rule);
+  read_section(attachments, "tibia", "attachments.tibia", file, config.tibia_attachment, rule);
 
-  Section voxelize(table_at(&root, "voxelize"), "voxelize", file);
-  voxelize.read("spacing_mm", config.voxelize.spacing_mm);
-  voxelize.read("padding_voxels", config.voxelize.padding_voxels);
-  voxelize.read("max_voxels", config.voxelize.max_voxels);
-  voxelize.reject_unknown();
-
-  Section centerline(table_at(&root, "centerline"), "centerline", file);
-  centerline.read("alpha", config.centerline.alpha);
-  std::string span = centerline::to_string(config.centerline.span);
-  centerline.read("span", span);
-  config.centerline.span = centerline::parse_span(span);
-  centerline.read("refine", config.centerline.refine);
-  centerline.read("relax_iterations", config.centerline.relax_iterations);
-  centerline.read("extend_to_surface", config.centerline.extend_to_surface);
-  centerline.read("point_spacing_mm", config.centerline.point_spacing_mm);
-  centerline.read("smoothing_passes", config.centerline.smoothing_passes);
-  centerline.reject_unknown();
-
-  Section field(table_at(&root, "field"), "field", file);
-  std::string method = field::to_string(config.field.method);
-  field.read("method", method);
-  config.field.method = field::parse_method(method);
-  field.read("laplace_tolerance", config.field.laplace_tolerance);
-  field.read("laplace_max_iterations", config.field.laplace_max_iterations);
-  field.reject_unknown();
-
-  Section tetmesh(table_at(&root, "tetmesh"), "tetmesh", file);
-  tetmesh.read("cell_size_mm", config.tetmesh.cell_size_mm);
-  tetmesh.read("facet_size_mm", config.tetmesh.facet_size_mm);
-  tetmesh.read("facet_distance_mm", config.tetmesh.facet_distance_mm);
-  tetmesh.read("facet_angle_deg", config.tetmesh.facet_angle_deg);
-  tetmesh.read("radius_edge_ratio", config.tetmesh.radius_edge_ratio);
-  tetmesh.read("exude_slivers", config.tetmesh.exude_slivers);
-  tetmesh.read("perturb", config.tetmesh.perturb);
-  tetmesh.read("seed", config.tetmesh.seed);
-  tetmesh.reject_unknown();
-
-  Section fibers(table_at(&root, "fibers"), "fibers", file);
-  fibers.read("samples_per_tet", config.fibers.samples_per_tet);
-  fibers.reject_unknown();
-
-  Section model(table_at(&root, "model"), "model", file);
-  model.read("in_situ_strain", config.model.in_situ_strain);
-  model.reject_unknown();
-
-  Section material(table_at(&root, "material"), "material", file);
-  material.read("mu_mpa", config.material.mu_mpa);
-  material.read("c3_mpa", config.material.c3_mpa);
-  material.read("c4", config.material.c4);
-  material.read("c5_mpa", config.material.c5_mpa);
-  material.read("lambda_star", config.material.lambda_star);
-  material.read("bulk_modulus_mpa", config.material.bulk_modulus_mpa);
-  material.read("fiber_convention", config.material.fiber_convention);
-  material.read("volumetric", config.material.volumetric);
-  material.reject_unknown();
-
-  Section flexion(table_at(&root, "flexion"), "flexion", file);
-  flexion.read("max_angle_deg", config.flexion.max_angle_deg);
-  flexion.read("steps", config.flexion.steps);
-  config.flexion.axis_given = flexion.has("axis_point_mm") || flexion.has("axis_direction");
-  flexion.read("axis_point_mm", config.flexion.axis_point_mm);
-  flexion.read("axis_direction", config.flexion.axis_direction);
-  flexion.reject_unknown();
+  read_section(&root, "voxelize", "voxelize", file, config.voxelize, [](auto& p, auto&& v) { visit_voxelize(p, v); });
+  read_section(&root, "centerline", "centerline", file, config.centerline, [](auto& p, auto&& v) { visit_centerline(p, v); });
+  read_section(&root, "field", "field", file, config.field, [](auto& p, auto&& v) { visit_field(p, v); });
+  read_section(&root, "tetmesh", "tetmesh", file, config.tetmesh, [](auto& p, auto&& v) { visit_tetmesh(p, v); });
+  read_section(&root, "fibers", "fibers", file, config.fibers, [](auto& p, auto&& v) { visit_fibers(p, v); });
+  read_section(&root, "model", "model", file, config.model, [](auto& p, auto&& v) { visit_model(p, v); });
+  read_section(&root, "material", "material", file, config.material, [](auto& p, auto&& v) { visit_material(p, v); });
+  read_section(&root, "flexion", "flexion", file, config.flexion, [](auto& p, auto&& v) { visit_flexion(p, v); });
+  if (const toml::table* flexion = table_at(&root, "flexion"))
+    config.flexion.axis_given = flexion->contains("axis_point_mm") || flexion->contains("axis_direction");
   return config;
 }
 
 namespace {
 
-nlohmann::json rule_json(const attachments::Rule& rule)
+/// Writes each visited parameter as a JSON member.
+struct JsonWriter {
+  nlohmann::json& json;
+
+  template <class T>
+  void operator()(const char* key, const T& value) { json[key] = value; }
+
+  void operator()(const char* key, const Eigen::Vector3d& value)
+  {
+    json[key] = {value.x(), value.y(), value.z()};
+  }
+
+  template <class E>
+  void operator()(const char* key, Choice<E> choice) { json[key] = choice.name(choice.value); }
+};
+
+template <class P, class VisitFields>
+nlohmann::json as_json(const P& parameters, VisitFields visit_fields)
 {
-  return {{"rule", rule.rule},           {"indices", rule.indices},
-          {"array", rule.array},         {"distance_mm", rule.distance_mm},
-          {"end_length_mm", rule.end_length_mm}, {"end", rule.end}};
+  nlohmann::json json = nlohmann::json::object();
+  visit_fields(parameters, JsonWriter{json});
+  return json;
 }
 
 std::string path_text(const fs::path& path) { return path.empty() ? "" : path.string(); }
@@ -259,54 +240,28 @@ std::string path_text(const fs::path& path) { return path.empty() ? "" : path.st
 
 nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
 {
+  const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
   if (stage == "attachments")
-    return {{"femur", rule_json(c.femur_attachment)}, {"tibia", rule_json(c.tibia_attachment)}};
+    return {{"femur", as_json(c.femur_attachment, rule)}, {"tibia", as_json(c.tibia_attachment, rule)}};
   if (stage == "distance")
     return nlohmann::json::object(); // exact distances: nothing to choose
   if (stage == "voxelize")
-    return {{"spacing_mm", c.voxelize.spacing_mm},
-            {"padding_voxels", c.voxelize.padding_voxels},
-            {"max_voxels", c.voxelize.max_voxels}};
+    return as_json(c.voxelize, [](auto& p, auto&& v) { visit_voxelize(p, v); });
   if (stage == "centerline")
-    return {{"alpha", c.centerline.alpha},
-            {"span", centerline::to_string(c.centerline.span)},
-            {"refine", c.centerline.refine},
-            {"relax_iterations", c.centerline.relax_iterations},
-            {"extend_to_surface", c.centerline.extend_to_surface},
-            {"point_spacing_mm", c.centerline.point_spacing_mm},
-            {"smoothing_passes", c.centerline.smoothing_passes}};
+    return as_json(c.centerline, [](auto& p, auto&& v) { visit_centerline(p, v); });
   if (stage == "field")
-    return {{"method", field::to_string(c.field.method)},
-            {"laplace_tolerance", c.field.laplace_tolerance},
-            {"laplace_max_iterations", c.field.laplace_max_iterations}};
+    return as_json(c.field, [](auto& p, auto&& v) { visit_field(p, v); });
   if (stage == "tetmesh")
-    return {{"cell_size_mm", c.tetmesh.cell_size_mm},
-            {"facet_size_mm", c.tetmesh.facet_size_mm},
-            {"facet_distance_mm", c.tetmesh.facet_distance_mm},
-            {"facet_angle_deg", c.tetmesh.facet_angle_deg},
-            {"radius_edge_ratio", c.tetmesh.radius_edge_ratio},
-            {"exude_slivers", c.tetmesh.exude_slivers},
-            {"perturb", c.tetmesh.perturb},
-            {"seed", c.tetmesh.seed}};
+    return as_json(c.tetmesh, [](auto& p, auto&& v) { visit_tetmesh(p, v); });
   if (stage == "fibers")
-    return {{"samples_per_tet", c.fibers.samples_per_tet}};
-  if (stage == "model")
-    return {{"in_situ_strain", c.model.in_situ_strain},
-            {"material",
-             {{"mu_mpa", c.material.mu_mpa},
-              {"c3_mpa", c.material.c3_mpa},
-              {"c4", c.material.c4},
-              {"c5_mpa", c.material.c5_mpa},
-              {"lambda_star", c.material.lambda_star},
-              {"bulk_modulus_mpa", c.material.bulk_modulus_mpa},
-              {"fiber_convention", c.material.fiber_convention},
-              {"volumetric", c.material.volumetric}}},
-            {"flexion",
-             {{"max_angle_deg", c.flexion.max_angle_deg},
-              {"steps", c.flexion.steps},
-              {"axis_given", c.flexion.axis_given},
-              {"axis_point_mm", {c.flexion.axis_point_mm.x(), c.flexion.axis_point_mm.y(), c.flexion.axis_point_mm.z()}},
-              {"axis_direction", {c.flexion.axis_direction.x(), c.flexion.axis_direction.y(), c.flexion.axis_direction.z()}}}}};
+    return as_json(c.fibers, [](auto& p, auto&& v) { visit_fibers(p, v); });
+  if (stage == "model") {
+    nlohmann::json model = as_json(c.model, [](auto& p, auto&& v) { visit_model(p, v); });
+    model["material"] = as_json(c.material, [](auto& p, auto&& v) { visit_material(p, v); });
+    model["flexion"] = as_json(c.flexion, [](auto& p, auto&& v) { visit_flexion(p, v); });
+    model["flexion"]["axis_given"] = c.flexion.axis_given;
+    return model;
+  }
   fail("unknown stage '{}'", stage);
 }
 

@@ -1,0 +1,118 @@
+#pragma once
+/// @brief Every build parameter with its config key, listed once per section. Reading the TOML
+/// file, writing summary.json and keying the stage cache all walk these lists, so none of them
+/// can miss a parameter.
+
+#include "pipeline/build/build_config.hpp"
+
+#include <string>
+#include <type_traits>
+
+namespace ligsim::pipeline {
+
+/// An enumerated parameter, spelled as text in the config and in summary.json.
+template <class E>
+struct Choice {
+  E& value;
+  std::remove_const_t<E> (*parse)(const std::string&);
+  std::string (*name)(std::remove_const_t<E>);
+};
+
+template <class E>
+Choice<E> choice(E& value, std::remove_const_t<E> (*parse)(const std::string&),
+                 std::string (*name)(std::remove_const_t<E>))
+{
+  return {value, parse, name};
+}
+
+// Each visit_fields(parameters, visit) calls visit(key, member) for every parameter; the
+// parameters may be const (writing) or not (reading).
+
+template <class Rule, class Visit>
+void visit_rule(Rule& r, Visit&& visit)
+{
+  visit("rule", r.rule);
+  visit("indices", r.indices);
+  visit("array", r.array);
+  visit("distance_mm", r.distance_mm);
+  visit("end_length_mm", r.end_length_mm);
+  visit("end", r.end);
+}
+
+template <class P, class Visit>
+void visit_voxelize(P& p, Visit&& visit)
+{
+  visit("spacing_mm", p.spacing_mm);
+  visit("padding_voxels", p.padding_voxels);
+  visit("max_voxels", p.max_voxels);
+}
+
+template <class P, class Visit>
+void visit_centerline(P& p, Visit&& visit)
+{
+  visit("alpha", p.alpha);
+  visit("span", choice(p.span, centerline::parse_span, centerline::to_string));
+  visit("refine", p.refine);
+  visit("relax_iterations", p.relax_iterations);
+  visit("extend_to_surface", p.extend_to_surface);
+  visit("point_spacing_mm", p.point_spacing_mm);
+  visit("smoothing_passes", p.smoothing_passes);
+}
+
+template <class P, class Visit>
+void visit_field(P& p, Visit&& visit)
+{
+  visit("method", choice(p.method, field::parse_method, field::to_string));
+  visit("laplace_tolerance", p.laplace_tolerance);
+  visit("laplace_max_iterations", p.laplace_max_iterations);
+}
+
+template <class P, class Visit>
+void visit_tetmesh(P& p, Visit&& visit)
+{
+  visit("cell_size_mm", p.cell_size_mm);
+  visit("facet_size_mm", p.facet_size_mm);
+  visit("facet_distance_mm", p.facet_distance_mm);
+  visit("facet_angle_deg", p.facet_angle_deg);
+  visit("radius_edge_ratio", p.radius_edge_ratio);
+  visit("exude_slivers", p.exude_slivers);
+  visit("perturb", p.perturb);
+  visit("seed", p.seed);
+}
+
+template <class P, class Visit>
+void visit_fibers(P& p, Visit&& visit)
+{
+  visit("samples_per_tet", p.samples_per_tet);
+}
+
+template <class P, class Visit>
+void visit_model(P& p, Visit&& visit)
+{
+  visit("in_situ_strain", p.in_situ_strain);
+}
+
+template <class P, class Visit>
+void visit_material(P& p, Visit&& visit)
+{
+  visit("mu_mpa", p.mu_mpa);
+  visit("c3_mpa", p.c3_mpa);
+  visit("c4", p.c4);
+  visit("c5_mpa", p.c5_mpa);
+  visit("lambda_star", p.lambda_star);
+  visit("bulk_modulus_mpa", p.bulk_modulus_mpa);
+  visit("fiber_convention", p.fiber_convention);
+  visit("volumetric", p.volumetric);
+}
+
+/// Without axis_given, which the reader derives from the presence of the axis keys.
+template <class P, class Visit>
+void visit_flexion(P& p, Visit&& visit)
+{
+  visit("max_angle_deg", p.max_angle_deg);
+  visit("steps", p.steps);
+  visit("axis_point_mm", p.axis_point_mm);
+  visit("axis_direction", p.axis_direction);
+}
+
+} // namespace ligsim::pipeline
