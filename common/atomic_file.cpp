@@ -11,7 +11,7 @@ namespace ligsim {
 namespace fs = std::filesystem;
 
 AtomicFile::AtomicFile(fs::path target)
-  : m_target(std::move(target))
+    : m_target(std::move(target))
 {
   const std::string stem = m_target.stem().string();
   const std::string tag = fmt::format(".{}.tmp-{}", stem, ::getpid());

@@ -36,6 +36,9 @@ ContentHash& ContentHash::add_file(const std::filesystem::path& file)
   return add("");
 }
 
-std::string ContentHash::hex() const { return fmt::format("{:016x}", m_state); }
+std::string ContentHash::hex() const
+{
+  return fmt::format("{:016x}", m_state);
+}
 
 } // namespace ligsim

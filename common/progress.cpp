@@ -15,9 +15,9 @@ constexpr double kQuietSeconds = 1.0;
 } // namespace
 
 Progress::Progress(std::string label, std::size_t total)
-  : m_label(std::move(label))
-  , m_total(total)
-  , m_start(std::chrono::steady_clock::now())
+    : m_label(std::move(label))
+    , m_total(total)
+    , m_start(std::chrono::steady_clock::now())
 {
 }
 
@@ -48,7 +48,10 @@ double Progress::elapsed_s() const
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
 }
 
-void Progress::set_quiet(bool quiet) { g_quiet = quiet; }
+void Progress::set_quiet(bool quiet)
+{
+  g_quiet = quiet;
+}
 
 void log_info(const std::string& message)
 {

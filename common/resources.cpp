@@ -30,7 +30,7 @@ void reset_peak_rss()
 }
 
 StageMeter::StageMeter()
-  : m_start(std::chrono::steady_clock::now())
+    : m_start(std::chrono::steady_clock::now())
 {
   reset_peak_rss();
 }
@@ -40,6 +40,9 @@ double StageMeter::wall_s() const
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
 }
 
-double StageMeter::peak_rss_mib() const { return ligsim::peak_rss_mib(); }
+double StageMeter::peak_rss_mib() const
+{
+  return ligsim::peak_rss_mib();
+}
 
 } // namespace ligsim

@@ -15,7 +15,10 @@ RunSummary::RunSummary(std::string job)
   m_json["results"] = nlohmann::json::object();
 }
 
-nlohmann::json& RunSummary::stage(const std::string& name) { return m_json["stages"][name]; }
+nlohmann::json& RunSummary::stage(const std::string& name)
+{
+  return m_json["stages"][name];
+}
 
 nlohmann::json& RunSummary::add_stage(const std::string& name, const StageMeter& meter,
                                       nlohmann::json figures)

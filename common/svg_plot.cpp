@@ -94,7 +94,10 @@ std::string escape(const std::string& text)
   return out;
 }
 
-std::string tick_text(double v) { return fmt::format("{:g}", v); }
+std::string tick_text(double v)
+{
+  return fmt::format("{:g}", v);
+}
 
 } // namespace
 
@@ -116,7 +119,8 @@ std::string svg_line_plot(const PlotSpec& spec)
   std::string svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" "
       "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
-      "fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"15\" text-anchor=\"middle\">{}</text>\n",
+      "fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"15\" "
+      "text-anchor=\"middle\">{}</text>\n",
       width, height, left + plot_w / 2, escape(spec.title));
   svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" "
                      "stroke=\"black\"/>\n",
@@ -148,8 +152,9 @@ std::string svg_line_plot(const PlotSpec& spec)
       svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"/>\n", x, y,
                          colour);
       if (i < series.point_labels.size())
-        svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n",
-                           x + 5, y - 5, colour, escape(series.point_labels[i]));
+        svg +=
+            fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n",
+                        x + 5, y - 5, colour, escape(series.point_labels[i]));
     }
     if (!path.empty())
       svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n",
@@ -157,8 +162,8 @@ std::string svg_line_plot(const PlotSpec& spec)
     const double legend_y = top + 10 + 18 * static_cast<double>(s);
     svg += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" "
                        "stroke-width=\"2\"/><text x=\"{4}\" y=\"{5}\">{6}</text>\n",
-                       left + plot_w + 12, legend_y, left + plot_w + 32, colour,
-                       left + plot_w + 38, legend_y + 4, escape(series.name));
+                       left + plot_w + 12, legend_y, left + plot_w + 32, colour, left + plot_w + 38,
+                       legend_y + 4, escape(series.name));
   }
   svg += "</svg>\n";
   return svg;

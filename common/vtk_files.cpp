@@ -9,8 +9,8 @@
 #include <vtkDataSetWriter.h>
 #include <vtkImageData.h>
 #include <vtkPolyData.h>
-#include <vtkUnstructuredGrid.h>
 #include <vtkStringOutputWindow.h>
+#include <vtkUnstructuredGrid.h>
 #include <vtkXMLImageDataReader.h>
 #include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataReader.h>
@@ -37,8 +37,7 @@ vtkSmartPointer<vtkXMLWriter> xml_writer_for(const std::string& extension)
   return nullptr;
 }
 
-template <class Reader>
-auto read_xml(const fs::path& file, const char* kind)
+template <class Reader> auto read_xml(const fs::path& file, const char* kind)
 {
   if (!fs::exists(file))
     fail("missing file '{}'", file.string());
@@ -108,7 +107,7 @@ void silence_vtk_output()
 }
 
 VtkErrorTrap::VtkErrorTrap(vtkObject* watched)
-  : m_watched(watched)
+    : m_watched(watched)
 {
   auto callback = vtkSmartPointer<vtkCallbackCommand>::New();
   callback->SetClientData(this);
@@ -131,7 +130,10 @@ VtkErrorTrap::VtkErrorTrap(vtkObject* watched)
   m_tag = watched->AddObserver(vtkCommand::ErrorEvent, callback);
 }
 
-VtkErrorTrap::~VtkErrorTrap() { m_watched->RemoveObserver(m_tag); }
+VtkErrorTrap::~VtkErrorTrap()
+{
+  m_watched->RemoveObserver(m_tag);
+}
 
 void write_pvd(const fs::path& file, const std::vector<std::pair<double, std::string>>& steps)
 {

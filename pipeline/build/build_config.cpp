@@ -18,12 +18,13 @@ namespace {
 class Section {
 public:
   Section(const toml::table* table, std::string name, fs::path file)
-    : m_table(table), m_name(std::move(name)), m_file(std::move(file))
+      : m_table(table)
+      , m_name(std::move(name))
+      , m_file(std::move(file))
   {
   }
 
-  template <class T>
-  void read(const std::string& key, T& target)
+  template <class T> void read(const std::string& key, T& target)
   {
     m_known.insert(key);
     if (m_table == nullptr)
@@ -100,8 +101,7 @@ public:
   }
 
 private:
-  template <class T>
-  static const char* expected_name()
+  template <class T> static const char* expected_name()
   {
     if constexpr (std::is_same_v<T, double>)
       return "a number";
@@ -117,7 +117,8 @@ private:
       return "three numbers";
   }
 
-  [[noreturn]] void type_error(const std::string& key, const toml::node* node, const char* expected) const
+  [[noreturn]] void type_error(const std::string& key, const toml::node* node,
+                               const char* expected) const
   {
     fail("{}:{}: [{}] {} must be {}", m_file.string(), node->source().begin.line, m_name, key,
          expected);
@@ -133,11 +134,9 @@ private:
 struct TomlReader {
   Section& section;
 
-  template <class T>
-  void operator()(const char* key, T& value) { section.read(key, value); }
+  template <class T> void operator()(const char* key, T& value) { section.read(key, value); }
 
-  template <class E>
-  void operator()(const char* key, Choice<E> choice)
+  template <class E> void operator()(const char* key, Choice<E> choice)
   {
     std::string text = choice.name(choice.value);
     section.read(key, text);
@@ -195,16 +194,25 @@ BuildConfig load_build_config(const fs::path& file)
   read_section(attachments, "femur", "attachments.femur", file, config.femur_attachment, rule);
   read_section(attachments, "tibia", "attachments.tibia", file, config.tibia_attachment, rule);
 
-  read_section(&root, "voxelize", "voxelize", file, config.voxelize, [](auto& p, auto&& v) { visit_voxelize(p, v); });
-  read_section(&root, "centerline", "centerline", file, config.centerline, [](auto& p, auto&& v) { visit_centerline(p, v); });
-  read_section(&root, "field", "field", file, config.field, [](auto& p, auto&& v) { visit_field(p, v); });
-  read_section(&root, "tetmesh", "tetmesh", file, config.tetmesh, [](auto& p, auto&& v) { visit_tetmesh(p, v); });
-  read_section(&root, "fibers", "fibers", file, config.fibers, [](auto& p, auto&& v) { visit_fibers(p, v); });
-  read_section(&root, "model", "model", file, config.model, [](auto& p, auto&& v) { visit_model(p, v); });
-  read_section(&root, "material", "material", file, config.material, [](auto& p, auto&& v) { visit_material(p, v); });
-  read_section(&root, "flexion", "flexion", file, config.flexion, [](auto& p, auto&& v) { visit_flexion(p, v); });
+  read_section(&root, "voxelize", "voxelize", file, config.voxelize,
+               [](auto& p, auto&& v) { visit_voxelize(p, v); });
+  read_section(&root, "centerline", "centerline", file, config.centerline,
+               [](auto& p, auto&& v) { visit_centerline(p, v); });
+  read_section(&root, "field", "field", file, config.field,
+               [](auto& p, auto&& v) { visit_field(p, v); });
+  read_section(&root, "tetmesh", "tetmesh", file, config.tetmesh,
+               [](auto& p, auto&& v) { visit_tetmesh(p, v); });
+  read_section(&root, "fibers", "fibers", file, config.fibers,
+               [](auto& p, auto&& v) { visit_fibers(p, v); });
+  read_section(&root, "model", "model", file, config.model,
+               [](auto& p, auto&& v) { visit_model(p, v); });
+  read_section(&root, "material", "material", file, config.material,
+               [](auto& p, auto&& v) { visit_material(p, v); });
+  read_section(&root, "flexion", "flexion", file, config.flexion,
+               [](auto& p, auto&& v) { visit_flexion(p, v); });
   if (const toml::table* flexion = table_at(&root, "flexion"))
-    config.flexion.axis_given = flexion->contains("axis_point_mm") || flexion->contains("axis_direction");
+    config.flexion.axis_given =
+        flexion->contains("axis_point_mm") || flexion->contains("axis_direction");
   return config;
 }
 
@@ -214,16 +222,17 @@ namespace {
 struct JsonWriter {
   nlohmann::json& json;
 
-  template <class T>
-  void operator()(const char* key, const T& value) { json[key] = value; }
+  template <class T> void operator()(const char* key, const T& value) { json[key] = value; }
 
   void operator()(const char* key, const Eigen::Vector3d& value)
   {
     json[key] = {value.x(), value.y(), value.z()};
   }
 
-  template <class E>
-  void operator()(const char* key, Choice<E> choice) { json[key] = choice.name(choice.value); }
+  template <class E> void operator()(const char* key, Choice<E> choice)
+  {
+    json[key] = choice.name(choice.value);
+  }
 };
 
 template <class P, class VisitFields>
@@ -234,7 +243,10 @@ nlohmann::json as_json(const P& parameters, VisitFields visit_fields)
   return json;
 }
 
-std::string path_text(const fs::path& path) { return path.empty() ? "" : path.string(); }
+std::string path_text(const fs::path& path)
+{
+  return path.empty() ? "" : path.string();
+}
 
 } // namespace
 
@@ -242,7 +254,8 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
 {
   const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
   if (stage == "attachments")
-    return {{"femur", as_json(c.femur_attachment, rule)}, {"tibia", as_json(c.tibia_attachment, rule)}};
+    return {{"femur", as_json(c.femur_attachment, rule)},
+            {"tibia", as_json(c.tibia_attachment, rule)}};
   if (stage == "distance")
     return nlohmann::json::object(); // exact distances: nothing to choose
   if (stage == "voxelize")
@@ -270,7 +283,8 @@ nlohmann::json to_json(const BuildConfig& c)
   nlohmann::json all = {{"surface", path_text(c.surface)},
                         {"femur", path_text(c.femur)},
                         {"tibia", path_text(c.tibia)}};
-  for (const char* stage : {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
+  for (const char* stage :
+       {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);
   return all;
 }

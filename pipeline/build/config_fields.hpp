@@ -11,8 +11,7 @@
 namespace ligsim::pipeline {
 
 /// An enumerated parameter, spelled as text in the config and in summary.json.
-template <class E>
-struct Choice {
+template <class E> struct Choice {
   E& value;
   std::remove_const_t<E> (*parse)(const std::string&);
   std::string (*name)(std::remove_const_t<E>);
@@ -28,8 +27,7 @@ Choice<E> choice(E& value, std::remove_const_t<E> (*parse)(const std::string&),
 // Each visit_fields(parameters, visit) calls visit(key, member) for every parameter; the
 // parameters may be const (writing) or not (reading).
 
-template <class Rule, class Visit>
-void visit_rule(Rule& r, Visit&& visit)
+template <class Rule, class Visit> void visit_rule(Rule& r, Visit&& visit)
 {
   visit("rule", r.rule);
   visit("indices", r.indices);
@@ -39,16 +37,14 @@ void visit_rule(Rule& r, Visit&& visit)
   visit("end", r.end);
 }
 
-template <class P, class Visit>
-void visit_voxelize(P& p, Visit&& visit)
+template <class P, class Visit> void visit_voxelize(P& p, Visit&& visit)
 {
   visit("spacing_mm", p.spacing_mm);
   visit("padding_voxels", p.padding_voxels);
   visit("max_voxels", p.max_voxels);
 }
 
-template <class P, class Visit>
-void visit_centerline(P& p, Visit&& visit)
+template <class P, class Visit> void visit_centerline(P& p, Visit&& visit)
 {
   visit("alpha", p.alpha);
   visit("span", choice(p.span, centerline::parse_span, centerline::to_string));
@@ -59,16 +55,14 @@ void visit_centerline(P& p, Visit&& visit)
   visit("smoothing_passes", p.smoothing_passes);
 }
 
-template <class P, class Visit>
-void visit_field(P& p, Visit&& visit)
+template <class P, class Visit> void visit_field(P& p, Visit&& visit)
 {
   visit("method", choice(p.method, field::parse_method, field::to_string));
   visit("laplace_tolerance", p.laplace_tolerance);
   visit("laplace_max_iterations", p.laplace_max_iterations);
 }
 
-template <class P, class Visit>
-void visit_tetmesh(P& p, Visit&& visit)
+template <class P, class Visit> void visit_tetmesh(P& p, Visit&& visit)
 {
   visit("cell_size_mm", p.cell_size_mm);
   visit("facet_size_mm", p.facet_size_mm);
@@ -80,20 +74,17 @@ void visit_tetmesh(P& p, Visit&& visit)
   visit("seed", p.seed);
 }
 
-template <class P, class Visit>
-void visit_fibers(P& p, Visit&& visit)
+template <class P, class Visit> void visit_fibers(P& p, Visit&& visit)
 {
   visit("samples_per_tet", p.samples_per_tet);
 }
 
-template <class P, class Visit>
-void visit_model(P& p, Visit&& visit)
+template <class P, class Visit> void visit_model(P& p, Visit&& visit)
 {
   visit("in_situ_strain", p.in_situ_strain);
 }
 
-template <class P, class Visit>
-void visit_material(P& p, Visit&& visit)
+template <class P, class Visit> void visit_material(P& p, Visit&& visit)
 {
   visit("mu_mpa", p.mu_mpa);
   visit("c3_mpa", p.c3_mpa);
@@ -106,8 +97,7 @@ void visit_material(P& p, Visit&& visit)
 }
 
 /// Without axis_given, which the reader derives from the presence of the axis keys.
-template <class P, class Visit>
-void visit_flexion(P& p, Visit&& visit)
+template <class P, class Visit> void visit_flexion(P& p, Visit&& visit)
 {
   visit("max_angle_deg", p.max_angle_deg);
   visit("steps", p.steps);

@@ -32,7 +32,10 @@ Points positions(const TriangleSurface& surface, const std::vector<int>& vertice
   return points;
 }
 
-nlohmann::json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+nlohmann::json point_json(const Eigen::Vector3d& p)
+{
+  return {p.x(), p.y(), p.z()};
+}
 
 /// Short segments along each tet's fiber through its centroid, for viewing in ParaView.
 vtkSmartPointer<vtkPolyData> fiber_lines(const TetMesh& mesh, const Eigen::MatrixX3d& directions)
@@ -73,7 +76,7 @@ nlohmann::json run_centerline(const BuildConfig& config, const fs::path& dir)
   const Eigen::Vector3d start = femur.colwise().mean().transpose();
   const Eigen::Vector3d end = tibia.colwise().mean().transpose();
   const centerline::Centerline line =
-    centerline::extract(load_mask(dir), load_distance(dir), femur, tibia, config.centerline);
+      centerline::extract(load_mask(dir), load_distance(dir), femur, tibia, config.centerline);
 
   auto polydata = io::polyline_to_polydata(line.points);
   io::add_array(polydata->GetPointData(), "tangent", line.tangents);

@@ -26,7 +26,7 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   const TetMesh mesh = io::from_unstructured_grid(fibers_grid);
   const Eigen::MatrixX3d directions = io::get_array(fibers_grid->GetCellData(), "fiber");
   const model::Model built =
-    model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
+      model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
 
   auto grid = io::to_unstructured_grid(built.mesh);
   io::add_array(grid->GetCellData(), "fiber", built.fibers);
@@ -35,7 +35,8 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   write_vtk(grid, dir / files::model);
 
   std::vector<std::string> bones;
-  for (const auto& [file, name] : {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}})
+  for (const auto& [file, name] :
+       {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}})
     if (const auto bone = load_bone(file)) {
       write_vtk(io::to_polydata(*bone), dir / name);
       bones.push_back(name);
@@ -50,17 +51,21 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
     axis = {config.flexion.axis_point_mm, config.flexion.axis_direction.normalized()};
   write_scene(dir / files::scene, config, axis, bones);
 
-  const auto count = [](const std::vector<bool>& flags) { return std::count(flags.begin(), flags.end(), true); };
-  return {{"tets", built.mesh.T.rows()},
-          {"nodes", built.mesh.V.rows()},
-          {"boundary_nodes", built.boundary_nodes},
-          {"femur_nodes", count(built.femur_nodes)},
-          {"tibia_nodes", count(built.tibia_nodes)},
-          {"fiber_length", 1.0 + config.model.in_situ_strain},
-          {"flexion_axis",
-           {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},
-            {"direction", {axis.direction.x(), axis.direction.y(), axis.direction.z()}},
-            {"rule", config.flexion.axis_given ? "given" : "femoral attachment, thinnest principal direction"}}}};
+  const auto count = [](const std::vector<bool>& flags) {
+    return std::count(flags.begin(), flags.end(), true);
+  };
+  return {
+      {"tets", built.mesh.T.rows()},
+      {"nodes", built.mesh.V.rows()},
+      {"boundary_nodes", built.boundary_nodes},
+      {"femur_nodes", count(built.femur_nodes)},
+      {"tibia_nodes", count(built.tibia_nodes)},
+      {"fiber_length", 1.0 + config.model.in_situ_strain},
+      {"flexion_axis",
+       {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},
+        {"direction", {axis.direction.x(), axis.direction.y(), axis.direction.z()}},
+        {"rule", config.flexion.axis_given ? "given"
+                                           : "femoral attachment, thinnest principal direction"}}}};
 }
 
 } // namespace ligsim::pipeline

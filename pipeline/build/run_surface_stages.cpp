@@ -49,11 +49,13 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
   attachments::Inputs inputs{&ligament, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr,
                              std::move(arrays)};
   const attachments::Attachments found =
-    attachments::find(inputs, config.femur_attachment, config.tibia_attachment);
+      attachments::find(inputs, config.femur_attachment, config.tibia_attachment);
 
   auto surface = io::to_polydata(ligament);
-  io::add_flags(surface->GetPointData(), "femur_attachment", membership(found.femur.vertices, ligament.V.rows()));
-  io::add_flags(surface->GetPointData(), "tibia_attachment", membership(found.tibia.vertices, ligament.V.rows()));
+  io::add_flags(surface->GetPointData(), "femur_attachment",
+                membership(found.femur.vertices, ligament.V.rows()));
+  io::add_flags(surface->GetPointData(), "tibia_attachment",
+                membership(found.tibia.vertices, ligament.V.rows()));
   write_vtk(surface, dir / files::attachments);
   return {{"surface_vertices", ligament.V.rows()},
           {"surface_triangles", ligament.F.rows()},

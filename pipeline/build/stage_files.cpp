@@ -14,13 +14,15 @@ namespace ligsim::pipeline {
 
 namespace fs = std::filesystem;
 
-TriangleSurface load_ligament(const BuildConfig& config, std::map<std::string, Eigen::VectorXd>* arrays)
+TriangleSurface load_ligament(const BuildConfig& config,
+                              std::map<std::string, Eigen::VectorXd>* arrays)
 {
   if (config.surface.empty())
     fail("no ligament surface given (--surface or [input] surface)");
   TriangleSurface surface = io::read_surface(config.surface, arrays);
   io::orient_outward(surface);
-  io::require_closed_manifold(surface, fmt::format("ligament surface '{}'", config.surface.string()));
+  io::require_closed_manifold(surface,
+                              fmt::format("ligament surface '{}'", config.surface.string()));
   return surface;
 }
 
@@ -33,9 +35,18 @@ std::optional<TriangleSurface> load_bone(const fs::path& file)
   return surface;
 }
 
-Mask load_mask(const fs::path& dir) { return io::from_image<std::uint8_t>(read_vti(dir / files::mask), "inside"); }
-ScalarGrid load_distance(const fs::path& dir) { return io::from_image<float>(read_vti(dir / files::distance), "distance"); }
-ScalarGrid load_field(const fs::path& dir) { return io::from_image<float>(read_vti(dir / files::field), "D"); }
+Mask load_mask(const fs::path& dir)
+{
+  return io::from_image<std::uint8_t>(read_vti(dir / files::mask), "inside");
+}
+ScalarGrid load_distance(const fs::path& dir)
+{
+  return io::from_image<float>(read_vti(dir / files::distance), "distance");
+}
+ScalarGrid load_field(const fs::path& dir)
+{
+  return io::from_image<float>(read_vti(dir / files::field), "D");
+}
 
 Polyline load_centerline(const fs::path& dir)
 {
@@ -44,7 +55,10 @@ Polyline load_centerline(const fs::path& dir)
   return Polyline(io::points_of(polydata), tangents);
 }
 
-TetMesh load_mesh(const fs::path& file) { return io::from_unstructured_grid(read_vtu(file)); }
+TetMesh load_mesh(const fs::path& file)
+{
+  return io::from_unstructured_grid(read_vtu(file));
+}
 
 StoredAttachments load_attachments(const fs::path& dir)
 {

@@ -7,7 +7,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<fs::path> ligament_only(const BuildConfig& c) { return {c.surface}; }
+std::vector<fs::path> ligament_only(const BuildConfig& c)
+{
+  return {c.surface};
+}
 
 std::vector<fs::path> ligament_and_bones(const BuildConfig& c)
 {
@@ -18,28 +21,59 @@ std::vector<fs::path> ligament_and_bones(const BuildConfig& c)
   return inputs;
 }
 
-std::vector<fs::path> none(const BuildConfig&) { return {}; }
+std::vector<fs::path> none(const BuildConfig&)
+{
+  return {};
+}
 
 } // namespace
 
 const std::vector<Stage>& build_stages()
 {
   static const std::vector<Stage> stages = {
-    {"attachments", "attachment areas A1 (femur) and A2 (tibia) on the ligament surface", {},
-     {files::attachments}, ligament_and_bones, run_attachments},
-    {"voxelize", "inside/outside voxel image of the ligament", {}, {files::mask}, ligament_only,
-     run_voxelize},
-    {"distance", "distance of every voxel to the surface", {"voxelize"}, {files::distance},
-     ligament_only, run_distance},
-    {"centerline", "minimal-cost path between the attachment areas (eq. 25)",
-     {"attachments", "voxelize", "distance"}, {files::centerline}, ligament_only, run_centerline},
-    {"field", "diffusion field D, 0 on the centerline and 1 on the boundary",
-     {"voxelize", "centerline"}, {files::field}, ligament_only, run_field},
-    {"tetmesh", "tetrahedral mesh (CGAL Mesh_3)", {}, {files::mesh}, ligament_only, run_tetmesh},
-    {"fibers", "fiber direction per tet", {"voxelize", "centerline", "field", "tetmesh"},
-     {files::fibers, files::fiber_lines}, none, run_fibers},
-    {"model", "simulation model: fibers with in-situ strain, bone-bound nodes, scene",
-     {"attachments", "fibers"}, {files::model, files::scene}, ligament_and_bones, run_model},
+      {"attachments",
+       "attachment areas A1 (femur) and A2 (tibia) on the ligament surface",
+       {},
+       {files::attachments},
+       ligament_and_bones,
+       run_attachments},
+      {"voxelize",
+       "inside/outside voxel image of the ligament",
+       {},
+       {files::mask},
+       ligament_only,
+       run_voxelize},
+      {"distance",
+       "distance of every voxel to the surface",
+       {"voxelize"},
+       {files::distance},
+       ligament_only,
+       run_distance},
+      {"centerline",
+       "minimal-cost path between the attachment areas (eq. 25)",
+       {"attachments", "voxelize", "distance"},
+       {files::centerline},
+       ligament_only,
+       run_centerline},
+      {"field",
+       "diffusion field D, 0 on the centerline and 1 on the boundary",
+       {"voxelize", "centerline"},
+       {files::field},
+       ligament_only,
+       run_field},
+      {"tetmesh", "tetrahedral mesh (CGAL Mesh_3)", {}, {files::mesh}, ligament_only, run_tetmesh},
+      {"fibers",
+       "fiber direction per tet",
+       {"voxelize", "centerline", "field", "tetmesh"},
+       {files::fibers, files::fiber_lines},
+       none,
+       run_fibers},
+      {"model",
+       "simulation model: fibers with in-situ strain, bone-bound nodes, scene",
+       {"attachments", "fibers"},
+       {files::model, files::scene},
+       ligament_and_bones,
+       run_model},
   };
   return stages;
 }

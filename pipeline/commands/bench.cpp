@@ -44,33 +44,37 @@ void run_bench_build(const BenchOptions& o)
     // The synthetic band, written by `ligsim synth band` into the bench folder.
     const fs::path shape = out / "band-shape";
     if (!fs::exists(shape / "surface.stl"))
-      fail("'{}' is missing: run `ligsim synth band --out {}` first", (shape / "surface.stl").string(),
-           shape.string());
+      fail("'{}' is missing: run `ligsim synth band --out {}` first",
+           (shape / "surface.stl").string(), shape.string());
     pipeline::BuildConfig band;
     band.surface = shape / "surface.stl";
     band.femur = shape / "femur.stl";
     band.tibia = shape / "tibia.stl";
     samples.push_back({"synthetic band 80x12x3 mm", band});
-    samples.push_back({"VHF right MCL", pipeline::load_build_config(data / "vhf-right-knee" / "mcl.toml")});
+    samples.push_back(
+        {"VHF right MCL", pipeline::load_build_config(data / "vhf-right-knee" / "mcl.toml")});
   }
 
   std::ostringstream csv, table;
   csv << "sample,voxel_mm,stage,wall_s,peak_rss_mib\n";
-  table << "| sample | voxel (mm) | stage | wall (s) | peak memory (MiB) |\n|---|---|---|---|---|\n";
+  table
+      << "| sample | voxel (mm) | stage | wall (s) | peak memory (MiB) |\n|---|---|---|---|---|\n";
   for (Sample& sample : samples) {
     const double spacing = voxelize::default_spacing(io::read_surface(sample.config.surface));
     for (double factor : {1.0, 0.5}) {
       sample.config.voxelize.spacing_mm = spacing * factor;
-      const fs::path dir = out / fmt::format("{}-{:.3f}", sample.name.substr(0, 3), spacing * factor);
+      const fs::path dir =
+          out / fmt::format("{}-{:.3f}", sample.name.substr(0, 3), spacing * factor);
       log_info(fmt::format("bench: {} at {:.3f} mm", sample.name, spacing * factor));
       RunSummary summary("bench");
       pipeline::run_target(sample.config, dir, "model", true, summary);
       for (const pipeline::Stage& stage : pipeline::build_stages()) {
         const auto& entry = summary.json()["stages"][stage.name];
         const double wall = entry["wall_s"], memory = entry["peak_rss_mib"];
-        csv << fmt::format("{},{:.4f},{},{:.3f},{:.1f}\n", sample.name, spacing * factor, stage.name, wall, memory);
-        table << fmt::format("| {} | {:.3f} | {} | {:.3f} | {:.1f} |\n", sample.name, spacing * factor,
-                             stage.name, wall, memory);
+        csv << fmt::format("{},{:.4f},{},{:.3f},{:.1f}\n", sample.name, spacing * factor,
+                           stage.name, wall, memory);
+        table << fmt::format("| {} | {:.3f} | {} | {:.3f} | {:.1f} |\n", sample.name,
+                             spacing * factor, stage.name, wall, memory);
       }
     }
   }
@@ -86,12 +90,13 @@ void add_bench_command(CLI::App& app)
   auto* bench = app.add_subcommand("bench", "benchmarks (long: not part of the test suite)");
   bench->require_subcommand(1);
   auto* build = bench->add_subcommand(
-    "build", "time and peak memory of every build stage on the synthetic band and the real MCL, "
-             "at the default voxel spacing and half of it");
+      "build", "time and peak memory of every build stage on the synthetic band and the real MCL, "
+               "at the default voxel spacing and half of it");
   auto options = std::make_shared<BenchOptions>();
-  build->add_option("--out", options->out, "folder for the runs and bench-build.csv / .md")->required();
+  build->add_option("--out", options->out, "folder for the runs and bench-build.csv / .md")
+      ->required();
   build->add_option("--source", options->source_dir, "the ligsim source tree (for data/)")
-    ->default_val(".");
+      ->default_val(".");
   build->callback([options] { run_bench_build(*options); });
 }
 

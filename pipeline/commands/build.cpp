@@ -35,34 +35,62 @@ struct BuildOptions {
 
 void add_options(CLI::App* command, BuildOptions& o)
 {
-  command->add_option("--config", o.config, "TOML file with every parameter (see README); flags override it")
-    ->check(CLI::ExistingFile);
-  command->add_option("--surface", o.surface, "ligament surface: .stl, .obj, .ply, .vtp or .vtk, mm");
+  command
+      ->add_option("--config", o.config,
+                   "TOML file with every parameter (see README); flags override it")
+      ->check(CLI::ExistingFile);
+  command->add_option("--surface", o.surface,
+                      "ligament surface: .stl, .obj, .ply, .vtp or .vtk, mm");
   command->add_option("--femur", o.femur, "femur surface (optional)");
   command->add_option("--tibia", o.tibia, "tibia surface (optional)");
   command->add_option("--out", o.out, "output folder")->required();
   auto* attach = "Attachment areas";
-  command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")->group(attach);
-  command->add_option("--tibia-rule", o.tibia_rule, "auto, indices, array, proximity or end")->group(attach);
-  command->add_option("--femur-indices", o.femur_indices, "ligament vertex indices of A1")->delimiter(',')->group(attach);
-  command->add_option("--tibia-indices", o.tibia_indices, "ligament vertex indices of A2")->delimiter(',')->group(attach);
-  command->add_option("--femur-array", o.femur_array, "point-data array marking A1 (non-zero)")->group(attach);
-  command->add_option("--tibia-array", o.tibia_array, "point-data array marking A2 (non-zero)")->group(attach);
-  command->add_option("--attach-distance", o.attach_distance, "proximity rule: max distance to the bone, mm (default 1)")->group(attach);
-  command->add_option("--end-length", o.end_length, "end rule: length of the end along the main axis, mm (default 5)")->group(attach);
+  command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")
+      ->group(attach);
+  command->add_option("--tibia-rule", o.tibia_rule, "auto, indices, array, proximity or end")
+      ->group(attach);
+  command->add_option("--femur-indices", o.femur_indices, "ligament vertex indices of A1")
+      ->delimiter(',')
+      ->group(attach);
+  command->add_option("--tibia-indices", o.tibia_indices, "ligament vertex indices of A2")
+      ->delimiter(',')
+      ->group(attach);
+  command->add_option("--femur-array", o.femur_array, "point-data array marking A1 (non-zero)")
+      ->group(attach);
+  command->add_option("--tibia-array", o.tibia_array, "point-data array marking A2 (non-zero)")
+      ->group(attach);
+  command
+      ->add_option("--attach-distance", o.attach_distance,
+                   "proximity rule: max distance to the bone, mm (default 1)")
+      ->group(attach);
+  command
+      ->add_option("--end-length", o.end_length,
+                   "end rule: length of the end along the main axis, mm (default 5)")
+      ->group(attach);
   command->add_option("--femur-end", o.femur_end, "end rule: min, max or auto")->group(attach);
   command->add_option("--tibia-end", o.tibia_end, "end rule: min, max or auto")->group(attach);
   auto* stages = "Stage parameters";
-  command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")->group(stages);
-  command->add_option("--alpha", o.alpha, "centerline medial weight in [0, 1] (default 0.1)")->group(stages);
-  command->add_option("--span", o.span, "centerline between the areas' means (default) or through the whole attachments")
-    ->check(CLI::IsMember({"means", "attachments"}))->group(stages);
-  command->add_option("--field-method", o.field_method, "geometric (default) or laplace")->group(stages);
+  command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")
+      ->group(stages);
+  command->add_option("--alpha", o.alpha, "centerline medial weight in [0, 1] (default 0.1)")
+      ->group(stages);
+  command
+      ->add_option("--span", o.span,
+                   "centerline between the areas' means (default) or through the whole attachments")
+      ->check(CLI::IsMember({"means", "attachments"}))
+      ->group(stages);
+  command->add_option("--field-method", o.field_method, "geometric (default) or laplace")
+      ->group(stages);
   command->add_option("--cell-size", o.cell_size, "tet mesh max circumradius, mm")->group(stages);
-  command->add_option("--facet-size", o.facet_size, "tet mesh max surface Delaunay ball radius, mm")->group(stages);
-  command->add_option("--facet-distance", o.facet_distance, "tet mesh max distance to the surface, mm")->group(stages);
-  command->add_option("--radius-edge", o.radius_edge, "tet mesh radius-edge bound (default 2)")->group(stages);
-  command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")->group(stages);
+  command->add_option("--facet-size", o.facet_size, "tet mesh max surface Delaunay ball radius, mm")
+      ->group(stages);
+  command
+      ->add_option("--facet-distance", o.facet_distance, "tet mesh max distance to the surface, mm")
+      ->group(stages);
+  command->add_option("--radius-edge", o.radius_edge, "tet mesh radius-edge bound (default 2)")
+      ->group(stages);
+  command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
+      ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
 }
 
@@ -77,8 +105,9 @@ void set_if(const std::string& value, std::string& target)
     target = value;
 }
 
-void apply_rule_flags(attachments::Rule& rule, const std::string& kind, const std::vector<int>& indices,
-                      const std::string& array, const std::string& end, const BuildOptions& o)
+void apply_rule_flags(attachments::Rule& rule, const std::string& kind,
+                      const std::vector<int>& indices, const std::string& array,
+                      const std::string& end, const BuildOptions& o)
 {
   set_if(kind, rule.rule);
   if (!indices.empty())
@@ -98,8 +127,10 @@ BuildConfig resolve_config(const BuildOptions& o)
     config.femur = o.femur;
   if (!o.tibia.empty())
     config.tibia = o.tibia;
-  apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array, o.femur_end, o);
-  apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array, o.tibia_end, o);
+  apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
+                   o.femur_end, o);
+  apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
+                   o.tibia_end, o);
   set_if(o.voxel, config.voxelize.spacing_mm);
   set_if(o.alpha, config.centerline.alpha);
   if (!o.span.empty())
@@ -156,7 +187,8 @@ void add_build_commands(CLI::App& app)
 
   for (const pipeline::Stage& stage : pipeline::build_stages()) {
     auto* command = app.add_subcommand(
-      stage.name, fmt::format("stage: {} (runs the stages it needs that are not current)", stage.description));
+        stage.name, fmt::format("stage: {} (runs the stages it needs that are not current)",
+                                stage.description));
     auto options = std::make_shared<BuildOptions>();
     add_options(command, *options);
     command->callback([options, name = stage.name] { run_build_job(*options, name); });

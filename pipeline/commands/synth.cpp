@@ -74,8 +74,8 @@ void run_synth(const SynthOptions& o)
 void add_synth_command(CLI::App& app)
 {
   auto* command = app.add_subcommand(
-    "synth", "write a synthetic shape with a known axis: band (MCL-like, with femur and tibia "
-             "proxies), cylinder or torus (tube along a circular arc)");
+      "synth", "write a synthetic shape with a known axis: band (MCL-like, with femur and tibia "
+               "proxies), cylinder or torus (tube along a circular arc)");
   auto options = std::make_shared<SynthOptions>();
   command->add_option("shape", options->shape, "band, cylinder or torus")->required();
   command->add_option("--out", options->out, "output folder")->required();

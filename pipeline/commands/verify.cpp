@@ -5,10 +5,10 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "common/svg_plot.hpp"
 #include "sim/verify/cube_verification.hpp"
 #include "sim/verify/stability.hpp"
 #include "sim/verify/sweep.hpp"
-#include "common/svg_plot.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -137,17 +137,16 @@ void run_cube(const CubeOptions& options)
       continue;
     const Points febio = sim::read_febio_displacements(c.displacements, mesh.mesh.V.rows());
     for (sim::CubeEnergy energy : {sim::CubeEnergy::matched, sim::CubeEnergy::paper}) {
-      results.push_back(
-          sim::run_cube_case(mesh, c, energy, settings, febio, reference.edge_mm));
+      results.push_back(sim::run_cube_case(mesh, c, energy, settings, febio, reference.edge_mm));
       const sim::CubeCaseResult& r = results.back();
-      log_info(r.converged ? fmt::format("{} ({}): avg error {:.2e} %, max {:.2e} % of the edge, "
-                                         "{} Newton iterations, {} factorisations, {:.2f} s "
-                                         "({:.2f} s CPU; FEBio {:.1f} s)",
-                                         r.name, to_string(energy), r.avg_error_pct,
-                                         r.max_error_pct, r.newton_iterations, r.factorizations,
-                                         r.wall_s, r.cpu_s, r.febio_wall_s)
-                           : fmt::format("{} ({}): failed: {}", r.name, to_string(energy),
-                                         r.failure));
+      log_info(r.converged
+                   ? fmt::format("{} ({}): avg error {:.2e} %, max {:.2e} % of the edge, "
+                                 "{} Newton iterations, {} factorisations, {:.2f} s "
+                                 "({:.2f} s CPU; FEBio {:.1f} s)",
+                                 r.name, to_string(energy), r.avg_error_pct, r.max_error_pct,
+                                 r.newton_iterations, r.factorizations, r.wall_s, r.cpu_s,
+                                 r.febio_wall_s)
+                   : fmt::format("{} ({}): failed: {}", r.name, to_string(energy), r.failure));
     }
   }
   summary.add_stage("solve", solve_meter, {{"runs", results.size()}});
@@ -232,8 +231,7 @@ void add_verify_command(CLI::App& app)
   cube->add_option("--cases", options->cases, "only these cases (names from cases.json)")
       ->delimiter(',');
   cube->add_option("--steps", options->load_steps, "load steps")->capture_default_str();
-  cube->add_option("--tolerance", options->residual_tolerance,
-                   "relative residual to converge to")
+  cube->add_option("--tolerance", options->residual_tolerance, "relative residual to converge to")
       ->capture_default_str();
   cube->add_option("--linear", options->linear, "linear solver: direct or pcg")
       ->capture_default_str();

@@ -17,7 +17,7 @@ constexpr std::array<double, 4> gauss_weights = {0.3626837833783620, 0.313706645
 } // namespace
 
 FiberLaw::FiberLaw(const FiberParameters& parameters)
-  : m_parameters(parameters)
+    : m_parameters(parameters)
 {
   const double star = parameters.lambda_star;
   m_c6 = parameters.c3_mpa * std::expm1(parameters.c4 * (star - 1.0)) - parameters.c5_mpa * star;
@@ -83,8 +83,8 @@ FiberResponse FiberLaw::evaluate(double lambda) const
     const double star = m_parameters.lambda_star;
     const double c5 = m_parameters.c5_mpa;
     if (m_parameters.convention == FiberConvention::paper)
-      response.energy = m_energy_at_star + 0.5 * c5 * (lambda * lambda - star * star) +
-                        m_c6 * (lambda - star);
+      response.energy =
+          m_energy_at_star + 0.5 * c5 * (lambda * lambda - star * star) + m_c6 * (lambda - star);
     else
       response.energy = m_energy_at_star + c5 * (lambda - star) + m_c6 * std::log(lambda / star);
     break;

@@ -60,6 +60,9 @@ std::string to_string(FiberConvention convention)
   return convention == FiberConvention::paper ? "paper" : "weiss";
 }
 
-std::string to_string(VolumetricLaw law) { return law == VolumetricLaw::jm1 ? "jm1" : "lnj"; }
+std::string to_string(VolumetricLaw law)
+{
+  return law == VolumetricLaw::jm1 ? "jm1" : "lnj";
+}
 
 } // namespace ligsim::sim

@@ -27,15 +27,15 @@ enum class VolumetricLaw {
 
 /// The collagen fiber law F_C(lambda), eq. 14 / 18.
 struct FiberParameters {
-  double c3_mpa = 2.07;     ///< toe scale
-  double c4 = 61.44;        ///< toe exponent (dimensionless)
-  double c5_mpa = 640.7;    ///< linear-region modulus
+  double c3_mpa = 2.07;      ///< toe scale
+  double c4 = 61.44;         ///< toe exponent (dimensionless)
+  double c5_mpa = 640.7;     ///< linear-region modulus
   double lambda_star = 1.03; ///< stretch where the toe region ends
   FiberConvention convention = FiberConvention::paper;
 };
 
 struct MaterialParameters {
-  double mu_mpa = 27.7;            ///< shear modulus of the ground substance
+  double mu_mpa = 27.7;             ///< shear modulus of the ground substance
   double bulk_modulus_mpa = 1000.0; ///< K of the volumetric penalty
   VolumetricLaw volumetric = VolumetricLaw::jm1;
   /// Absent: pure Neo-Hookean, no fiber term is computed anywhere.

@@ -24,12 +24,15 @@ Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F)
   return C;
 }
 
-Eigen::Map<const Vector12d> flat(const Rows4x3& rows) { return Eigen::Map<const Vector12d>(rows.data()); }
+Eigen::Map<const Vector12d> flat(const Rows4x3& rows)
+{
+  return Eigen::Map<const Vector12d>(rows.data());
+}
 
 } // namespace
 
 WeissMaterial::WeissMaterial(const MaterialParameters& parameters)
-  : m_parameters(parameters)
+    : m_parameters(parameters)
 {
   validate(parameters);
   if (parameters.fiber)
@@ -81,8 +84,8 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   const Eigen::Matrix3d cof = cofactor(F);
   const Rows4x3 grad_j = D * cof.transpose();
   const Rows4x3 grad_tr = 2.0 * D * F.transpose();
-  const double s_j = -2.0 / 3.0 * s / J;          // d J^-2/3 / dJ
-  const double s_jj = 10.0 / 9.0 * s / (J * J);   // d^2 J^-2/3 / dJ^2 (eq. 12)
+  const double s_j = -2.0 / 3.0 * s / J;        // d J^-2/3 / dJ
+  const double s_jj = 10.0 / 9.0 * s / (J * J); // d^2 J^-2/3 / dJ^2 (eq. 12)
   // dF_C/dI4 = F_C'(lambda) / (2 lambda) (eq. 15), and d^2F_C/dI4^2 (eq. 19).
   double phi = 0.0;
   double psi = 0.0;
@@ -140,8 +143,7 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
         H(3 * i + a, 3 * j + a) += diagonal;
     }
     for (int j = i + 1; j < 4; ++j) {
-      const Eigen::Vector3d w =
-          scale_hj * (F * D.row(i).transpose().cross(D.row(j).transpose()));
+      const Eigen::Vector3d w = scale_hj * (F * D.row(i).transpose().cross(D.row(j).transpose()));
       Eigen::Matrix3d block;
       block << 0.0, w(2), -w(1), -w(2), 0.0, w(0), w(1), -w(0), 0.0;
       H.block<3, 3>(3 * i, 3 * j) += block;

@@ -90,8 +90,7 @@ TetMesh structured_cube_mesh(int n, double edge_mm)
   return structured_box_mesh(Eigen::Vector3i::Constant(n), Eigen::Vector3d::Constant(edge_mm));
 }
 
-TetMesh bent_bar_mesh(const Eigen::Vector3i& cells, const Eigen::Vector3d& size_mm,
-                      double bend_deg)
+TetMesh bent_bar_mesh(const Eigen::Vector3i& cells, const Eigen::Vector3d& size_mm, double bend_deg)
 {
   TetMesh mesh = structured_box_mesh(cells, size_mm);
   const double turn = bend_deg * M_PI / 180.0;

@@ -50,12 +50,12 @@ MeshData read_mesh(TomlTable& table, const fs::path& base)
       const Eigen::Vector3d size = table.required_vector3("size_mm");
       const double bend = generator == "bent_bar" ? table.required_number("bend_deg") : 0.0;
       data.mesh = bent_bar_mesh(cells, size, bend);
-      data.source = fmt::format("{}, {} x {} x {} cells, {} x {} x {} mm, bend {} deg", generator,
-                                cells.x(), cells.y(), cells.z(), size.x(), size.y(), size.z(),
-                                bend);
+      data.source =
+          fmt::format("{}, {} x {} x {} cells, {} x {} x {} mm, bend {} deg", generator, cells.x(),
+                      cells.y(), cells.z(), size.x(), size.y(), size.z(), bend);
     } else {
-      table.fail_at("generator", "expected \"cube\", \"box\" or \"bent_bar\", got \"" +
-                                     generator + "\"");
+      table.fail_at("generator",
+                    "expected \"cube\", \"box\" or \"bent_bar\", got \"" + generator + "\"");
     }
   }
   table.reject_unknown_keys();
@@ -156,8 +156,8 @@ std::vector<int> read_node_set(TomlTable& table, const MeshData& mesh)
     nodes = table.integers("nodes");
     for (int node : nodes)
       if (node < 0 || node >= V.rows())
-        table.fail_at("nodes", fmt::format("node {} is out of range (the mesh has {} nodes)",
-                                           node, V.rows()));
+        table.fail_at("nodes", fmt::format("node {} is out of range (the mesh has {} nodes)", node,
+                                           V.rows()));
   }
   if (ways != 1)
     table.fail_at("plane", "give exactly one of 'plane', 'box', 'point_data' and 'nodes'");
@@ -267,9 +267,8 @@ void read_solver(TomlTable& table, Scene& scene)
   newton.energy_tolerance = table.number("energy_tolerance", newton.energy_tolerance);
   newton.max_cutbacks = table.integer("max_cutbacks", newton.max_cutbacks);
   newton.verbose = table.boolean("verbose", false);
-  const LinearSolverKind linear_default = scene.kind == SceneKind::dynamic
-                                              ? LinearSolverKind::pcg
-                                              : LinearSolverKind::direct;
+  const LinearSolverKind linear_default =
+      scene.kind == SceneKind::dynamic ? LinearSolverKind::pcg : LinearSolverKind::direct;
   newton.linear_solver =
       parse_linear_solver(table.text("linear", to_string(linear_default)), table.where());
   newton.pcg.tolerance = table.number("pcg_tolerance", newton.pcg.tolerance);
@@ -297,8 +296,7 @@ void read_dynamics(TomlTable& table, DynamicsSettings& dynamics)
   dynamics.ramp_frames = table.integer("ramp_frames", dynamics.ramp_frames);
   dynamics.density_kg_m3 = table.number("density_kg_m3", dynamics.density_kg_m3);
   dynamics.mass_damping_per_s = table.number("mass_damping_per_s", dynamics.mass_damping_per_s);
-  dynamics.stiffness_damping_s =
-      table.number("stiffness_damping_s", dynamics.stiffness_damping_s);
+  dynamics.stiffness_damping_s = table.number("stiffness_damping_s", dynamics.stiffness_damping_s);
   dynamics.max_halvings = table.integer("max_halvings", dynamics.max_halvings);
   table.reject_unknown_keys();
 }
@@ -357,8 +355,7 @@ Scene parse_scene(const std::string& text, const fs::path& base, const std::stri
   }
   root.reject_unknown_keys();
   if (scene.conditions.constraints.empty())
-    fail("{}: no [[fix]], [[displace]] or [[rigid]] constraint: the body could move freely",
-         name);
+    fail("{}: no [[fix]], [[displace]] or [[rigid]] constraint: the body could move freely", name);
   return scene;
 }
 

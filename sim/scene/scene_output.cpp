@@ -32,8 +32,8 @@ vtkSmartPointer<vtkDoubleArray> make_array(const char* name, int components, vtk
 } // namespace
 
 SceneOutput::SceneOutput(const HyperelasticBody& body, std::filesystem::path directory)
-  : m_body(body)
-  , m_directory(std::move(directory))
+    : m_body(body)
+    , m_directory(std::move(directory))
 {
   ensure_directory(m_directory);
 }

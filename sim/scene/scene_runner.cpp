@@ -15,7 +15,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vector_json(const Eigen::Vector3d& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
 
 /// Reaction force (and, for rigid motions, moment about the rotation point) of every set.
 nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen::VectorXd& x,
@@ -26,14 +29,12 @@ nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen:
   const std::vector<Eigen::Vector3d> forces = reaction_forces(conditions, residual);
   for (std::size_t s = 0; s < forces.size(); ++s) {
     const ConstraintSet& set = conditions.constraints[s];
-    nlohmann::json entry = {{"force_n", vector_json(forces[s])},
-                            {"magnitude_n", forces[s].norm()}};
+    nlohmann::json entry = {{"force_n", vector_json(forces[s])}, {"magnitude_n", forces[s].norm()}};
     if (set.rigid)
-      entry["moment_nmm"] =
-          vector_json(reaction_moment(set, residual, x, set.rigid->point_mm));
+      entry["moment_nmm"] = vector_json(reaction_moment(set, residual, x, set.rigid->point_mm));
     reactions[set.name] = entry;
-    csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", row_prefix, set.name,
-                       forces[s].x(), forces[s].y(), forces[s].z(), forces[s].norm());
+    csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", row_prefix, set.name, forces[s].x(),
+                       forces[s].y(), forces[s].z(), forces[s].norm());
   }
   return reactions;
 }
@@ -68,9 +69,9 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     if (output)
       output->write_step(0, 0.0, x);
     Progress progress("load steps", static_cast<std::size_t>(scene.newton.load_steps));
-    const StaticResult result = solver.solve(
-        x, [&](const StepReport& step, const Eigen::VectorXd& state,
-               const Eigen::VectorXd& residual) {
+    const StaticResult result =
+        solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
+                            const Eigen::VectorXd& residual) {
           nlohmann::json entry = {{"step", step.step},
                                   {"load_factor", step.load_factor},
                                   {"newton_iterations", step.iterations},
@@ -132,9 +133,9 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     // Every output frame is recorded as it comes; the last one always.
     FrameReport last;
     Eigen::VectorXd last_residual;
-    const DynamicResult result = solver.run(
-        x, [&](const FrameReport& frame, const Eigen::VectorXd& state,
-               const Eigen::VectorXd& residual) {
+    const DynamicResult result =
+        solver.run(x, [&](const FrameReport& frame, const Eigen::VectorXd& state,
+                          const Eigen::VectorXd& residual) {
           last = frame;
           if (frame.frame % scene.output.every == 0)
             record(frame, state, residual);

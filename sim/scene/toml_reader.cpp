@@ -7,12 +7,15 @@
 namespace ligsim::sim {
 
 TomlTable::TomlTable(const toml::table& table, std::string where)
-  : m_table(&table)
-  , m_where(std::move(where))
+    : m_table(&table)
+    , m_where(std::move(where))
 {
 }
 
-bool TomlTable::has(const std::string& key) const { return m_table->contains(key); }
+bool TomlTable::has(const std::string& key) const
+{
+  return m_table->contains(key);
+}
 
 void TomlTable::fail_at(const std::string& key, const std::string& problem) const
 {

@@ -20,8 +20,8 @@ constexpr double lagged_tolerance = 1e-8;
 } // namespace
 
 DirectCholesky::DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs)
-  : m_stiffness(body.mesh().T, dofs)
-  , m_chunk(static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, body.element_count())))
+    : m_stiffness(body.mesh().T, dofs)
+    , m_chunk(static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, body.element_count())))
 {
   m_cholesky.cholmod().print = 0; // indefinite matrices are reported through info()
   // Nested dissection (METIS) gives less fill than AMD on 3-D meshes.

@@ -11,11 +11,11 @@ namespace ligsim::sim {
 
 FilteredPcg::FilteredPcg(const HyperelasticBody& body, const DofPartition& dofs,
                          const PcgSettings& settings)
-  : m_T(body.mesh().T)
-  , m_dofs(dofs)
-  , m_settings(settings)
-  , m_hessians(static_cast<std::size_t>(body.element_count()))
-  , m_block_inverse(static_cast<std::size_t>(body.node_count()))
+    : m_T(body.mesh().T)
+    , m_dofs(dofs)
+    , m_settings(settings)
+    , m_hessians(static_cast<std::size_t>(body.element_count()))
+    , m_block_inverse(static_cast<std::size_t>(body.node_count()))
 {
 }
 

@@ -38,8 +38,8 @@ private:
   PcgSettings m_settings;
   std::vector<Matrix12d> m_hessians;
   double m_scale = 1.0;
-  Eigen::VectorXd m_mass; ///< full length, may be empty
-  std::vector<Eigen::Matrix3d> m_block_inverse; ///< one per node
+  Eigen::VectorXd m_mass;                         ///< full length, may be empty
+  std::vector<Eigen::Matrix3d> m_block_inverse;   ///< one per node
   mutable std::vector<Eigen::VectorXd> m_partial; ///< per-worker products in apply()
 };
 

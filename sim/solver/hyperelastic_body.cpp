@@ -13,9 +13,9 @@ namespace ligsim::sim {
 
 HyperelasticBody::HyperelasticBody(TetMesh mesh, const MaterialParameters& material,
                                    FiberField fibers)
-  : m_mesh(std::move(mesh))
-  , m_material(material)
-  , m_shapes(compute_rest_shapes(m_mesh))
+    : m_mesh(std::move(mesh))
+    , m_material(material)
+    , m_shapes(compute_rest_shapes(m_mesh))
 {
   if (m_material.has_fibers()) {
     if (fibers.rows() != 1 && fibers.rows() != m_mesh.T.rows())
@@ -23,8 +23,8 @@ HyperelasticBody::HyperelasticBody(TetMesh mesh, const MaterialParameters& mater
            m_mesh.T.rows());
     for (Eigen::Index e = 0; e < fibers.rows(); ++e)
       if (!fibers.row(e).allFinite() || fibers.row(e).norm() < 1e-12)
-        fail("the fiber vector of element {} is zero or not finite ({}, {}, {})", e,
-             fibers(e, 0), fibers(e, 1), fibers(e, 2));
+        fail("the fiber vector of element {} is zero or not finite ({}, {}, {})", e, fibers(e, 0),
+             fibers(e, 1), fibers(e, 2));
     for (Eigen::Index e = 0; e < fibers.rows(); ++e)
       m_fibers.emplace_back(fibers.row(e).transpose());
   }
@@ -80,8 +80,8 @@ BodyEnergy HyperelasticBody::energy_gradient(const Eigen::VectorXd& x,
     local.setZero(dof_count());
     ElementEvaluation evaluation;
     for (std::ptrdiff_t e = begin; e < end; ++e) {
-      m_material.evaluate(tet_corners(m_mesh.T, e, x), shape(e), fiber(e),
-                          ElementNeeds::gradient, evaluation);
+      m_material.evaluate(tet_corners(m_mesh.T, e, x), shape(e), fiber(e), ElementNeeds::gradient,
+                          evaluation);
       if (evaluation.inverted) {
         inverted[w] = std::min(inverted[w], static_cast<int>(e));
         continue;

@@ -52,8 +52,8 @@ public:
   /// Stiffness of elements [begin, end) into out[0 .. end - begin), each projected to positive
   /// semi-definite when `project`; returns how many needed the projection. `x` must have no
   /// inverted element.
-  int element_hessians(const Eigen::VectorXd& x, Eigen::Index begin, Eigen::Index end,
-                       bool project, Matrix12d* out) const;
+  int element_hessians(const Eigen::VectorXd& x, Eigen::Index begin, Eigen::Index end, bool project,
+                       Matrix12d* out) const;
 
   ElementMeasures measures(const Eigen::VectorXd& x, Eigen::Index e) const;
   /// Smallest J over the elements and where it is (the first NaN if any).

@@ -24,12 +24,12 @@ double seconds_since(std::chrono::steady_clock::time_point start)
 
 ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditions& conditions,
                              const DynamicsSettings& settings)
-  : m_body(body)
-  , m_conditions(conditions)
-  , m_settings(settings)
-  , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
-  , m_external(m_dofs.external_forces(conditions))
-  , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+    : m_body(body)
+    , m_conditions(conditions)
+    , m_settings(settings)
+    , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
+    , m_external(m_dofs.external_forces(conditions))
+    , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
 {
   if (!(settings.time_step_s > 0.0) || !std::isfinite(settings.time_step_s))
     fail("dynamics: time_step_s must be positive, got {}", settings.time_step_s);
@@ -182,8 +182,8 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
         reaction2 += gradient(dof) * gradient(dof);
       }
     }
-    const double scale = std::max(
-        {(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+    const double scale =
+        std::max({(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
     report.relative_residual = std::sqrt(residual2) / scale;
     report.relative_inertia = std::sqrt(inertia2) / scale;
     report.kinetic_energy_mj = 0.5 * v.dot(m_mass.cwiseProduct(v));

@@ -51,7 +51,7 @@ struct FrameReport {
 };
 
 struct DynamicResult {
-  bool completed = false;        ///< ran all its frames (or reached equilibrium) without failure
+  bool completed = false; ///< ran all its frames (or reached equilibrium) without failure
   bool reached_equilibrium = false;
   std::string failure;
   int frames = 0;
@@ -85,7 +85,7 @@ private:
   const BoundaryConditions& m_conditions;
   DynamicsSettings m_settings;
   DofPartition m_dofs;
-  Eigen::VectorXd m_external; ///< at load factor 1
+  Eigen::VectorXd m_external;  ///< at load factor 1
   Eigen::VectorXd m_mass;      ///< per DOF
   Eigen::VectorXd m_free_mass; ///< per free DOF
   StiffnessSolver m_linear;

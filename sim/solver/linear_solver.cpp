@@ -22,9 +22,9 @@ std::string to_string(LinearSolverKind kind)
 
 StiffnessSolver::StiffnessSolver(const HyperelasticBody& body, const DofPartition& dofs,
                                  LinearSolverKind kind, const PcgSettings& pcg)
-  : m_body(body)
-  , m_dofs(dofs)
-  , m_kind(kind)
+    : m_body(body)
+    , m_dofs(dofs)
+    , m_kind(kind)
 {
   if (kind == LinearSolverKind::direct)
     m_direct = std::make_unique<DirectCholesky>(body, dofs);

@@ -12,15 +12,13 @@ namespace ligsim::sim {
 /// Threads used for element loops (the hardware's, at most 8).
 inline int worker_count()
 {
-  static const int count =
-      std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
+  static const int count = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
   return count;
 }
 
 /// Calls body(begin, end, worker) on `worker_count()` contiguous slices of [0, count), in
 /// parallel when count is large enough to pay for the threads. Workers are numbered from 0.
-template <class Body>
-void parallel_slices(std::ptrdiff_t count, Body&& body)
+template <class Body> void parallel_slices(std::ptrdiff_t count, Body&& body)
 {
   constexpr std::ptrdiff_t min_per_worker = 2048;
   const int workers =

@@ -51,13 +51,13 @@ std::string to_string(PsdProjection projection)
 
 StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryConditions& conditions,
                            const NewtonSettings& settings)
-  : m_body(body)
-  , m_conditions(conditions)
-  , m_settings(settings)
-  , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
-  , m_rest(body.rest_positions())
-  , m_external(m_dofs.external_forces(conditions))
-  , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+    : m_body(body)
+    , m_conditions(conditions)
+    , m_settings(settings)
+    , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
+    , m_rest(body.rest_positions())
+    , m_external(m_dofs.external_forces(conditions))
+    , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
 {
   if (settings.load_steps < 1)
     fail("solver: load_steps must be at least 1, got {}", settings.load_steps);
@@ -208,8 +208,8 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
     for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
       if (!m_dofs.is_free(dof))
         reaction_norm2 += current.gradient(dof) * current.gradient(dof);
-    const double scale = std::max({(t1 * m_external).norm(), std::sqrt(reaction_norm2),
-                                   m_force_floor});
+    const double scale =
+        std::max({(t1 * m_external).norm(), std::sqrt(reaction_norm2), m_force_floor});
     report.relative_residual = residual.norm() / scale;
     const bool small_residual = report.relative_residual <= m_settings.residual_tolerance ||
                                 residual.norm() <= m_force_floor;
@@ -239,8 +239,8 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
     // Backtracking line search on the total energy.
     // Round-off in the element sum scales with the material's energy per volume, even where
     // the strain energy itself is near zero (rigid motions).
-    const double energy_scale = std::abs(current.body.energy) +
-                                std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
+    const double energy_scale =
+        std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
     double alpha = 1.0;
     bool accepted = false;
     Evaluation trial;

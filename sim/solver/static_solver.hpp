@@ -47,9 +47,9 @@ struct StepReport {
   int iterations = 0; ///< Newton iterations, all sub-steps together
   int substeps = 0;
   int cutbacks = 0;
-  int linear_iterations = 0; ///< CG iterations
-  int factorizations = 0;    ///< sparse Cholesky factorisations
-  int projected_elements = 0; ///< element stiffness projections, summed over iterations
+  int linear_iterations = 0;     ///< CG iterations
+  int factorizations = 0;        ///< sparse Cholesky factorisations
+  int projected_elements = 0;    ///< element stiffness projections, summed over iterations
   int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
   int line_search_backtracks = 0;
   double relative_residual = 0.0;

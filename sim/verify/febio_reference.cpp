@@ -22,8 +22,7 @@ nlohmann::json read_json(const std::filesystem::path& file)
   }
 }
 
-template <class T>
-T field(const nlohmann::json& object, const char* key, const std::string& where)
+template <class T> T field(const nlohmann::json& object, const char* key, const std::string& where)
 {
   if (!object.contains(key))
     fail("{}: missing field \"{}\"", where, key);

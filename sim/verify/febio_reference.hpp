@@ -27,7 +27,7 @@ struct FebioCase {
   Eigen::Vector3d force_per_top_node_n = Eigen::Vector3d::Zero();
   /// The case's own energy (fiber convention and volumetric law as FEBio ran it).
   MaterialParameters material;
-  std::string incompressibility; ///< "penalty" or "augmented_lagrangian"
+  std::string incompressibility;       ///< "penalty" or "augmented_lagrangian"
   std::filesystem::path displacements; ///< absolute path of <case>.txt
   nlohmann::json febio;                ///< FEBio's own figures (wall_s, avg_top_uz, ...)
 };

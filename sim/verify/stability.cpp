@@ -86,19 +86,15 @@ StabilityResult run_setup(const CubeSetup& setup)
     Eigen::VectorXd residual;
     if (setup.dynamics) {
       ImplicitEuler solver(body, conditions, *setup.dynamics);
-      const DynamicResult run = solver.run(
-          x, [&](const FrameReport&, const Eigen::VectorXd&, const Eigen::VectorXd& r) {
-            residual = r;
-          });
+      const DynamicResult run = solver.run(x, [&](const FrameReport&, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd& r) { residual = r; });
       result.converged = run.completed;
       result.diagnostic = run.failure;
       result.iterations = run.frames;
     } else {
       StaticSolver solver(body, conditions, setup.newton);
-      const StaticResult run = solver.solve(
-          x, [&](const StepReport&, const Eigen::VectorXd&, const Eigen::VectorXd& r) {
-            residual = r;
-          });
+      const StaticResult run = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                   const Eigen::VectorXd& r) { residual = r; });
       result.converged = run.converged;
       result.diagnostic = run.failure;
       result.iterations = run.newton_iterations;
@@ -142,15 +138,19 @@ std::vector<CaseDefinition> definitions()
                      fmt::format("K = {:.0e} MPa, 0.2 N per node (paper's largest load)", k)},
                     [k](CubeSetup& s) { s.material.bulk_modulus_mpa = k; }});
   for (double c5 : {1e3, 1e4})
-    list.push_back({{fmt::format("c5_{:.0e}", c5),
-                     fmt::format("C5 = {:.0e} MPa, 0.2 N per node", c5)},
-                    [c5](CubeSetup& s) { s.material.fiber->c5_mpa = c5; }});
+    list.push_back(
+        {{fmt::format("c5_{:.0e}", c5), fmt::format("C5 = {:.0e} MPa, 0.2 N per node", c5)},
+         [c5](CubeSetup& s) { s.material.fiber->c5_mpa = c5; }});
   list.push_back({{"load_x10", "2 N per node: ten times the paper's largest load"},
                   [](CubeSetup& s) { s.total_load_n *= 10.0; }});
-  list.push_back({{"compression_0.05", "compression along the fibers, 0.05 N per node"},
-                  [](CubeSetup& s) { s.total_load_n = {0, 0, -0.05 * 289}; }});
-  list.push_back({{"compression_0.20", "compression along the fibers, 0.2 N per node"},
-                  [](CubeSetup& s) { s.total_load_n = {0, 0, -0.2 * 289}; }});
+  list.push_back(
+      {{"compression_0.05", "compression along the fibers, 0.05 N per node"}, [](CubeSetup& s) {
+         s.total_load_n = {0, 0, -0.05 * 289};
+       }});
+  list.push_back(
+      {{"compression_0.20", "compression along the fibers, 0.2 N per node"}, [](CubeSetup& s) {
+         s.total_load_n = {0, 0, -0.2 * 289};
+       }});
   for (double dt : {1e-5, 1e-3, 1e-1, 1.0})
     list.push_back({{fmt::format("dynamic_dt_{:.0e}", dt),
                      fmt::format("implicit Euler, time step {:.0e} s, 40 frames, 0.2 N per node "
@@ -166,14 +166,13 @@ std::vector<CaseDefinition> definitions()
                     }});
   list.push_back({{"inverted_element", "element 0 inverted in the rest shape"},
                   [](CubeSetup& s) { std::swap(s.mesh.T(0, 0), s.mesh.T(0, 1)); }});
-  list.push_back({{"sliver", "a sliver: one element squashed to 2 % of its volume"},
-                  [](CubeSetup& s) {
-                    int element = -1;
-                    make_sliver(s.mesh, element);
-                  }});
-  list.push_back({{"nan_node", "node 5 moved to NaN"}, [](CubeSetup& s) {
-                    s.mesh.V(5, 1) = std::numeric_limits<double>::quiet_NaN();
-                  }});
+  list.push_back(
+      {{"sliver", "a sliver: one element squashed to 2 % of its volume"}, [](CubeSetup& s) {
+         int element = -1;
+         make_sliver(s.mesh, element);
+       }});
+  list.push_back({{"nan_node", "node 5 moved to NaN"},
+                  [](CubeSetup& s) { s.mesh.V(5, 1) = std::numeric_limits<double>::quiet_NaN(); }});
   return list;
 }
 
@@ -225,8 +224,8 @@ std::string stability_table(const std::vector<StabilityResult>& results)
                       "displacement mm | reaction balance | diagnostic |\n"
                       "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n";
   for (const StabilityResult& r : results)
-    table += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.4f} | {:.4f} | {:.1e} | {} |\n",
-                         r.name, r.description, r.outcome, r.iterations, r.wall_s, r.min_j,
+    table += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.4f} | {:.4f} | {:.1e} | {} |\n", r.name,
+                         r.description, r.outcome, r.iterations, r.wall_s, r.min_j,
                          r.max_displacement_mm, r.balance_error,
                          r.diagnostic.empty() ? "-" : r.diagnostic);
   return table;

@@ -100,9 +100,8 @@ CubeSolution solve_cube(int cells, const FebioCase& c, const NewtonSettings& set
       static_cast<double>(febio_top_nodes) / static_cast<double>(solution.mesh.top_nodes.size());
   Eigen::VectorXd x;
   reset_peak_rss();
-  const CubeCaseResult result =
-      run_cube_case(solution.mesh, scaled, CubeEnergy::matched, settings,
-                    cells == 16 ? febio : Points(), edge_mm, &x);
+  const CubeCaseResult result = run_cube_case(solution.mesh, scaled, CubeEnergy::matched, settings,
+                                              cells == 16 ? febio : Points(), edge_mm, &x);
   row.cells = cells;
   row.elements = static_cast<int>(solution.mesh.mesh.T.rows());
   row.converged = result.converged;
@@ -122,8 +121,8 @@ CubeSolution solve_cube(int cells, const FebioCase& c, const NewtonSettings& set
   return solution;
 }
 
-void compare_with_finest(const CubeSolution& solution, const CubeSolution& finest,
-                         double edge_mm, SweepRow& row)
+void compare_with_finest(const CubeSolution& solution, const CubeSolution& finest, double edge_mm,
+                         SweepRow& row)
 {
   double sum = 0.0;
   double worst = 0.0;
@@ -146,12 +145,12 @@ std::vector<SweepRow> run_sweep(const FebioReference& reference, const FebioCase
                                 const std::function<void(const SweepRow&)>& on_row)
 {
   const double edge = reference.edge_mm;
-  const Points febio = read_febio_displacements(c.displacements, generated_cube(16, edge).mesh.V.rows());
+  const Points febio =
+      read_febio_displacements(c.displacements, generated_cube(16, edge).mesh.V.rows());
   const std::optional<double> continuum = continuum_top_uz(reference, c.name);
   auto finish = [&](SweepRow& row) {
-    row.continuum_difference_pct =
-        continuum ? 100.0 * (row.avg_top_uz_mm / *continuum - 1.0)
-                  : std::numeric_limits<double>::quiet_NaN();
+    row.continuum_difference_pct = continuum ? 100.0 * (row.avg_top_uz_mm / *continuum - 1.0)
+                                             : std::numeric_limits<double>::quiet_NaN();
     if (on_row)
       on_row(row);
   };
@@ -201,8 +200,8 @@ std::vector<SweepRow> run_sweep(const FebioReference& reference, const FebioCase
       newton.residual_tolerance = tolerance;
       // A loose Newton tolerance deserves an equally loose CG tolerance.
       newton.pcg.tolerance = std::min(1e-2, std::max(1e-10, 0.01 * tolerance));
-      const CubeSolution solution = solve_cube(settings.tolerance_cells, c, newton, edge, row,
-                                               febio);
+      const CubeSolution solution =
+          solve_cube(settings.tolerance_cells, c, newton, edge, row, febio);
       if (row.converged)
         compare_with_finest(solution, finest, edge, row);
       finish(row);
@@ -219,14 +218,14 @@ std::string sweep_csv(const std::vector<SweepRow>& rows)
                     "max_error_finest_pct,avg_error_febio_pct,max_error_febio_pct,avg_top_uz_mm,"
                     "continuum_difference_pct\n";
   for (const SweepRow& r : rows)
-    csv += fmt::format("{},{},{},{},{:g},{},{:.4f},{:.1f},{},{},{},{:.6g},{:.6g},{},{},{:.8g},{:.4g}\n",
-                       r.family, r.cells, r.elements, r.linear_solver, r.tolerance,
-                       r.converged ? 1 : 0, r.wall_s, r.peak_rss_mib, r.newton_iterations,
-                       r.factorizations, r.cg_iterations, r.avg_error_finest_pct,
-                       r.max_error_finest_pct,
-                       r.avg_error_febio_pct < 0 ? "" : fmt::format("{:.6g}", r.avg_error_febio_pct),
-                       r.max_error_febio_pct < 0 ? "" : fmt::format("{:.6g}", r.max_error_febio_pct),
-                       r.avg_top_uz_mm, r.continuum_difference_pct);
+    csv += fmt::format(
+        "{},{},{},{},{:g},{},{:.4f},{:.1f},{},{},{},{:.6g},{:.6g},{},{},{:.8g},{:.4g}\n", r.family,
+        r.cells, r.elements, r.linear_solver, r.tolerance, r.converged ? 1 : 0, r.wall_s,
+        r.peak_rss_mib, r.newton_iterations, r.factorizations, r.cg_iterations,
+        r.avg_error_finest_pct, r.max_error_finest_pct,
+        r.avg_error_febio_pct < 0 ? "" : fmt::format("{:.6g}", r.avg_error_febio_pct),
+        r.max_error_febio_pct < 0 ? "" : fmt::format("{:.6g}", r.max_error_febio_pct),
+        r.avg_top_uz_mm, r.continuum_difference_pct);
   return csv;
 }
 
@@ -242,8 +241,7 @@ std::string sweep_table(const std::vector<SweepRow>& rows)
   for (const SweepRow& r : rows) {
     if (!r.converged) {
       table += fmt::format("| {} | {} | {} | {} | {:g} | {:.2f} | failed: {} |\n", r.family,
-                           r.cells, r.elements, r.linear_solver, r.tolerance, r.wall_s,
-                           r.failure);
+                           r.cells, r.elements, r.linear_solver, r.tolerance, r.wall_s, r.failure);
       continue;
     }
     table += fmt::format("| {} | {} | {} | {} | {:g} | {:.2f} | {:.0f} | {} | {} | {} | {} | {} | "
@@ -269,8 +267,7 @@ PlotSpec sweep_plot(const std::vector<SweepRow>& rows, const std::string& case_n
   for (const std::string family : {"mesh", "tolerance"})
     for (const std::string solver : {"direct", "pcg"}) {
       PlotSeries series;
-      series.name = family == "mesh" ? "mesh refinement, " + solver
-                                     : "tolerance (16^3), " + solver;
+      series.name = family == "mesh" ? "mesh refinement, " + solver : "tolerance (16^3), " + solver;
       for (const SweepRow& r : rows)
         if (r.family == family && r.linear_solver == solver && r.converged) {
           series.x.push_back(r.wall_s);

@@ -13,7 +13,10 @@ namespace {
 
 enum class Bone { femur, tibia };
 
-const char* name_of(Bone bone) { return bone == Bone::femur ? "femoral" : "tibial"; }
+const char* name_of(Bone bone)
+{
+  return bone == Bone::femur ? "femoral" : "tibial";
+}
 
 std::string resolved_rule(const Rule& rule, const Inputs& inputs, Bone bone)
 {
@@ -73,7 +76,8 @@ Area from_proximity(const Rule& rule, const Inputs& inputs, Bone bone)
 Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* other)
 {
   if (!(rule.end_length_mm > 0.0))
-    fail("{} attachment: end length must be positive, got {} mm", name_of(bone), rule.end_length_mm);
+    fail("{} attachment: end length must be positive, got {} mm", name_of(bone),
+         rule.end_length_mm);
   const Points& V = inputs.ligament->V;
   const Eigen::Vector3d axis = main_axis(V);
   const Eigen::VectorXd s = V * axis;
@@ -97,10 +101,10 @@ Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* oth
   for (Eigen::Index v = 0; v < V.rows(); ++v)
     if (at_max ? s[v] >= hi - rule.end_length_mm : s[v] <= lo + rule.end_length_mm)
       area.vertices.push_back(static_cast<int>(v));
-  area.rule = fmt::format("end: within {} mm of the {} end along the main axis ({:.3f}, {:.3f}, "
-                          "{:.3f}), {}",
-                          rule.end_length_mm, at_max ? "max" : "min", axis.x(), axis.y(), axis.z(),
-                          why);
+  area.rule =
+      fmt::format("end: within {} mm of the {} end along the main axis ({:.3f}, {:.3f}, "
+                  "{:.3f}), {}",
+                  rule.end_length_mm, at_max ? "max" : "min", axis.x(), axis.y(), axis.z(), why);
   return area;
 }
 
@@ -121,7 +125,8 @@ void finish(Area& area, const TriangleSurface& ligament, Bone bone)
 Eigen::Vector3d main_axis(const Points& points)
 {
   const Eigen::RowVector3d mean = points.colwise().mean();
-  const Eigen::Matrix3d covariance = (points.rowwise() - mean).transpose() * (points.rowwise() - mean);
+  const Eigen::Matrix3d covariance =
+      (points.rowwise() - mean).transpose() * (points.rowwise() - mean);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   Eigen::Vector3d axis = solver.eigenvectors().col(2);
   return axis.z() < 0.0 ? Eigen::Vector3d(-axis) : axis;

@@ -18,7 +18,8 @@ namespace ligsim::attachments {
 ///  - "proximity": the vertices within `distance_mm` of the bone surface;
 ///  - "end":       the vertices within `end_length_mm` of one end of the ligament along its main
 ///                 axis: `end` = "min" or "max" along the axis (oriented towards +z), or "auto":
-///                 the end farther from the other attachment, else +z for the femur, -z for the tibia;
+///                 the end farther from the other attachment, else +z for the femur, -z for the
+///                 tibia;
 ///  - "auto":      indices if given, else array if named, else proximity if the bone surface is
 ///                 given, else end.
 struct Rule {
@@ -31,8 +32,8 @@ struct Rule {
 };
 
 struct Area {
-  std::vector<int> vertices;  ///< sorted ligament-surface vertex indices
-  std::string rule;           ///< the rule that produced it, with its parameters, for summary.json
+  std::vector<int> vertices; ///< sorted ligament-surface vertex indices
+  std::string rule;          ///< the rule that produced it, with its parameters, for summary.json
   Eigen::Vector3d mean = Eigen::Vector3d::Zero(); ///< mean position, mm
 };
 

@@ -17,8 +17,9 @@ namespace ligsim::centerline {
 namespace {
 
 using VertexIndex = std::uint32_t;
-using Graph = boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
-                                                 boost::no_property, VertexIndex, VertexIndex>;
+using Graph =
+    boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
+                                       boost::no_property, VertexIndex, VertexIndex>;
 
 /// Distances below this fraction of a voxel are clamped, so 1/d^2 stays finite on the surface.
 constexpr double kMinDistanceVoxels = 0.1;
@@ -104,9 +105,9 @@ struct ShortestPaths {
 class VoxelGraph {
 public:
   VoxelGraph(const Mask& mask, const ScalarGrid& distance)
-    : m_mask(mask)
-    , m_distance(distance)
-    , m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
+      : m_mask(mask)
+      , m_distance(distance)
+      , m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
   {
     for (std::size_t v = 0; v < mask.values.size(); ++v)
       if (mask.values[v]) {
@@ -141,11 +142,13 @@ public:
                          std::vector<float>(m_voxel_of.size())};
     const auto index = boost::get(boost::vertex_index, m_graph);
     boost::dijkstra_shortest_paths(
-      m_graph, result.source,
-      boost::predecessor_map(boost::make_iterator_property_map(result.predecessor.begin(), index))
-        .distance_map(boost::make_iterator_property_map(result.cost.begin(), index))
-        .weight_map(boost::make_function_property_map<Graph::edge_descriptor, float>(
-          [this, &model](const Graph::edge_descriptor& edge) { return step_cost(edge, model); })));
+        m_graph, result.source,
+        boost::predecessor_map(boost::make_iterator_property_map(result.predecessor.begin(), index))
+            .distance_map(boost::make_iterator_property_map(result.cost.begin(), index))
+            .weight_map(boost::make_function_property_map<Graph::edge_descriptor, float>(
+                [this, &model](const Graph::edge_descriptor& edge) {
+                  return step_cost(edge, model);
+                })));
     return result;
   }
 
@@ -276,7 +279,9 @@ void relax(std::vector<Eigen::Vector3d>& line, const ScalarGrid& distance, const
     Eigen::Vector3d g;
     for (int a = 0; a < 3; ++a) {
       const Eigen::Vector3d e = h * Eigen::Vector3d::Unit(a);
-      g[a] = (model.density(interpolate(distance, p + e)) - model.density(interpolate(distance, p - e))) / (2 * h);
+      g[a] = (model.density(interpolate(distance, p + e)) -
+              model.density(interpolate(distance, p - e))) /
+             (2 * h);
     }
     return g;
   };
@@ -370,7 +375,10 @@ Span parse_span(const std::string& name)
   fail("unknown centerline span '{}' (use 'means' or 'attachments')", name);
 }
 
-std::string to_string(Span span) { return span == Span::means ? "means" : "attachments"; }
+std::string to_string(Span span)
+{
+  return span == Span::means ? "means" : "attachments";
+}
 
 double path_cost(const Points& points, const ScalarGrid& distance, double alpha)
 {
@@ -398,7 +406,8 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
   const ShortestPaths from_start = graph.shortest_paths(start_voxel, model);
   if (!from_start.reaches(graph.node(end_voxel)))
     fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
-         "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of the "
+         "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of "
+         "the "
          "voxel image (try a smaller voxel spacing)",
          mask.point(start_voxel).x(), mask.point(start_voxel).y(), mask.point(start_voxel).z(),
          mask.point(end_voxel).x(), mask.point(end_voxel).y(), mask.point(end_voxel).z());
@@ -411,8 +420,10 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
     // length inside it, alpha = 0: the medial term would favour voxels at the surface) from the
     // start; the start is the start area's voxel farthest from that end.
     const CostModel length_only{0.0, model.d_max, model.d_min};
-    end_voxel = graph.farthest(graph.shortest_paths(start_voxel, length_only), nearest_inside_voxels(mask, end_area));
-    start_voxel = graph.farthest(graph.shortest_paths(end_voxel, length_only), nearest_inside_voxels(mask, start_area));
+    end_voxel = graph.farthest(graph.shortest_paths(start_voxel, length_only),
+                               nearest_inside_voxels(mask, end_area));
+    start_voxel = graph.farthest(graph.shortest_paths(end_voxel, length_only),
+                                 nearest_inside_voxels(mask, start_area));
     const ShortestPaths from_end = graph.shortest_paths(end_voxel, model);
     voxels = graph.path_to_source(from_end, start_voxel);
     path_cost = from_end.cost[graph.node(start_voxel)];
@@ -435,7 +446,7 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
   if (parameters.refine && path.size() > 2)
     path = pull_string(path, distance, model);
   const double step =
-    parameters.point_spacing_mm > 0.0 ? parameters.point_spacing_mm : mask.spacing;
+      parameters.point_spacing_mm > 0.0 ? parameters.point_spacing_mm : mask.spacing;
   std::vector<Eigen::Vector3d> line = resample(path, step);
   if (parameters.refine)
     relax(line, distance, model, parameters.relax_iterations);

@@ -44,11 +44,11 @@ struct Parameters {
 };
 
 struct Centerline {
-  Points points;                         ///< #P x 3, mm, from the start to the end
-  Points tangents;                       ///< #P x 3 unit tangents
+  Points points;                           ///< #P x 3, mm, from the start to the end
+  Points tangents;                         ///< #P x 3 unit tangents
   std::vector<Eigen::Vector3i> voxel_path; ///< Dijkstra's path, voxel indices
   Eigen::Vector3i start_voxel, end_voxel;
-  double path_cost = 0.0;                ///< eq. 25 along the voxel path
+  double path_cost = 0.0; ///< eq. 25 along the voxel path
   double length_mm = 0.0;
 };
 

@@ -49,8 +49,8 @@ Grid<Eigen::Vector3f> gradient_of(const ScalarGrid& field, const Mask& mask)
 } // namespace
 
 FiberField::FiberField(const Polyline& centerline, const ScalarGrid& field, const Mask& mask)
-  : m_centerline(centerline)
-  , m_gradient(gradient_of(field, mask))
+    : m_centerline(centerline)
+    , m_gradient(gradient_of(field, mask))
 {
 }
 
@@ -73,7 +73,8 @@ FiberField::Sample FiberField::at(const Eigen::Vector3d& x) const
   return {tangent, gradient, false};
 }
 
-Result per_tet_directions(const TetMesh& mesh, const FiberField& fibers, const Parameters& parameters)
+Result per_tet_directions(const TetMesh& mesh, const FiberField& fibers,
+                          const Parameters& parameters)
 {
   // Barycentric sample points: the centroid and the 4-point Gauss rule's points.
   constexpr double a = 0.5854101966249685, b = 0.1381966011250105;
@@ -107,7 +108,8 @@ Result per_tet_directions(const TetMesh& mesh, const FiberField& fibers, const P
       unprojected += s.projected ? 0 : 1;
       sum += s.direction.dot(reference) >= 0.0 ? s.direction : Eigen::Vector3d(-s.direction);
     }
-    const Eigen::Vector3d direction = sum.norm() > 0.0 ? Eigen::Vector3d(sum.normalized()) : reference;
+    const Eigen::Vector3d direction =
+        sum.norm() > 0.0 ? Eigen::Vector3d(sum.normalized()) : reference;
     result.directions.row(t) = direction.transpose();
     const double cosine = std::min(1.0, std::abs(direction.dot(fibers.tangent_at(centroid))));
     alignment_sum += std::acos(cosine) * kDegreesPerRadian;

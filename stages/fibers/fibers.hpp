@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 
-
 namespace ligsim {
 class Polyline;
 }
@@ -42,13 +41,14 @@ struct Parameters {
 };
 
 struct Result {
-  Eigen::MatrixX3d directions; ///< #T x 3 unit vectors, one per tetrahedron
-  int unprojected_samples = 0; ///< samples where grad D gave no isosurface (tangent used)
+  Eigen::MatrixX3d directions;     ///< #T x 3 unit vectors, one per tetrahedron
+  int unprojected_samples = 0;     ///< samples where grad D gave no isosurface (tangent used)
   double mean_alignment_deg = 0.0; ///< mean angle between a tet's fiber and the centerline tangent
 };
 
 /// Averages the fiber samples inside each tetrahedron (signs aligned with the tangent first,
 /// since a fiber has no sense) and normalises.
-Result per_tet_directions(const TetMesh& mesh, const FiberField& fibers, const Parameters& parameters);
+Result per_tet_directions(const TetMesh& mesh, const FiberField& fibers,
+                          const Parameters& parameters);
 
 } // namespace ligsim::fibers

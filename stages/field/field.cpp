@@ -71,7 +71,8 @@ std::vector<bool> centerline_voxels(const Mask& mask, const Polyline& centerline
   const Points& p = centerline.points();
   for (Eigen::Index s = 0; s + 1 < p.rows(); ++s) {
     const Eigen::Vector3d a = p.row(s), b = p.row(s + 1);
-    const int samples = std::max(1, static_cast<int>(std::ceil(4.0 * (b - a).norm() / mask.spacing)));
+    const int samples =
+        std::max(1, static_cast<int>(std::ceil(4.0 * (b - a).norm() / mask.spacing)));
     for (int t = 0; t <= samples; ++t) {
       const Eigen::Vector3d v = mask.voxel_coordinates(a + (b - a) * (double(t) / samples));
       const Eigen::Vector3i ijk = v.array().round().cast<int>();
@@ -100,7 +101,8 @@ Field laplace_field(const Mask& mask, const Polyline& centerline, const Paramete
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(voxel_of.size() * 7);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  static const int offsets[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const int offsets[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   constexpr double kEndFaceCosine = 0.70710678;
   for (Eigen::Index row = 0; row < n; ++row) {
     const Eigen::Vector3i a = mask.ijk(voxel_of[row]);

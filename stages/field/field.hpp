@@ -32,11 +32,11 @@ struct Parameters {
 };
 
 struct Field {
-  ScalarGrid values;           ///< D inside, 1 outside
-  int rays_missed = 0;         ///< geometric: rays from C(x) that found no boundary (D = 1 used)
-  int clamped = 0;             ///< geometric: voxels hidden behind a fold of the surface (D > 1, clamped)
-  int iterations = 0;          ///< laplace: CG iterations
-  double residual = 0.0;       ///< laplace: final relative residual
+  ScalarGrid values;     ///< D inside, 1 outside
+  int rays_missed = 0;   ///< geometric: rays from C(x) that found no boundary (D = 1 used)
+  int clamped = 0;       ///< geometric: voxels hidden behind a fold of the surface (D > 1, clamped)
+  int iterations = 0;    ///< laplace: CG iterations
+  double residual = 0.0; ///< laplace: final relative residual
 };
 
 Field diffusion_field(const Mask& mask, const Polyline& centerline, const SurfaceQuery& surface,

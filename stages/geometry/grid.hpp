@@ -10,8 +10,7 @@ namespace ligsim {
 
 /// Values at voxel centres; voxel (i, j, k) sits at origin + spacing * (i, j, k), mm.
 /// Storage is x-fastest, as in VTK's image data.
-template <class T>
-struct Grid {
+template <class T> struct Grid {
   Eigen::Vector3i dims = Eigen::Vector3i::Zero();
   Eigen::Vector3d origin = Eigen::Vector3d::Zero(); ///< centre of voxel (0, 0, 0), mm
   double spacing = 1.0;                             ///< voxel edge, mm
@@ -19,13 +18,15 @@ struct Grid {
 
   Grid() = default;
   Grid(const Eigen::Vector3i& dims_, const Eigen::Vector3d& origin_, double spacing_, T fill = T{})
-    : dims(dims_), origin(origin_), spacing(spacing_), values(voxel_count(), fill)
+      : dims(dims_)
+      , origin(origin_)
+      , spacing(spacing_)
+      , values(voxel_count(), fill)
   {
   }
 
   /// Same geometry as `other`, new values.
-  template <class U>
-  static Grid like(const Grid<U>& other, T fill = T{})
+  template <class U> static Grid like(const Grid<U>& other, T fill = T{})
   {
     return Grid(other.dims, other.origin, other.spacing, fill);
   }
@@ -36,7 +37,8 @@ struct Grid {
   }
   std::size_t index(int i, int j, int k) const
   {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x()) * (j + static_cast<std::size_t>(dims.y()) * k);
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(dims.x()) * (j + static_cast<std::size_t>(dims.y()) * k);
   }
   Eigen::Vector3i ijk(std::size_t index) const
   {
@@ -56,13 +58,16 @@ struct Grid {
   Eigen::Vector3d point(std::size_t index) const { return point_of(ijk(index)); }
   Eigen::Vector3d point_of(const Eigen::Vector3i& v) const { return point(v.x(), v.y(), v.z()); }
   /// Continuous voxel coordinates of a point (voxel centres at integers).
-  Eigen::Vector3d voxel_coordinates(const Eigen::Vector3d& p) const { return (p - origin) / spacing; }
+  Eigen::Vector3d voxel_coordinates(const Eigen::Vector3d& p) const
+  {
+    return (p - origin) / spacing;
+  }
 
   T& operator()(int i, int j, int k) { return values[index(i, j, k)]; }
   const T& operator()(int i, int j, int k) const { return values[index(i, j, k)]; }
 };
 
-using Mask = Grid<std::uint8_t>;  ///< 1 inside the surface, 0 outside
+using Mask = Grid<std::uint8_t>; ///< 1 inside the surface, 0 outside
 using ScalarGrid = Grid<float>;
 
 /// The 26 neighbour offsets of a voxel.

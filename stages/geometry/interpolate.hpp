@@ -23,8 +23,8 @@ void visit_trilinear(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visi
   }
   for (int corner = 0; corner < 8; ++corner) {
     const int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
-    const double w = (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) *
-                     (dk ? frac[2] : 1 - frac[2]);
+    const double w =
+        (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
     if (w != 0.0)
       visit(grid(std::min(base[0] + di, grid.dims[0] - 1), std::min(base[1] + dj, grid.dims[1] - 1),
                  std::min(base[2] + dk, grid.dims[2] - 1)),
@@ -33,11 +33,11 @@ void visit_trilinear(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visi
 }
 
 /// Scalar value at `p` (mm).
-template <class T>
-double interpolate(const Grid<T>& grid, const Eigen::Vector3d& p)
+template <class T> double interpolate(const Grid<T>& grid, const Eigen::Vector3d& p)
 {
   double result = 0.0;
-  visit_trilinear(grid, p, [&](const T& value, double w) { result += w * static_cast<double>(value); });
+  visit_trilinear(grid, p,
+                  [&](const T& value, double w) { result += w * static_cast<double>(value); });
   return result;
 }
 
@@ -45,7 +45,8 @@ double interpolate(const Grid<T>& grid, const Eigen::Vector3d& p)
 inline Eigen::Vector3d interpolate(const Grid<Eigen::Vector3f>& grid, const Eigen::Vector3d& p)
 {
   Eigen::Vector3d result = Eigen::Vector3d::Zero();
-  visit_trilinear(grid, p, [&](const Eigen::Vector3f& value, double w) { result += w * value.cast<double>(); });
+  visit_trilinear(
+      grid, p, [&](const Eigen::Vector3f& value, double w) { result += w * value.cast<double>(); });
   return result;
 }
 

@@ -9,8 +9,8 @@
 namespace ligsim {
 
 Polyline::Polyline(Points points, Points tangents)
-  : m_points(std::move(points))
-  , m_tangents(std::move(tangents))
+    : m_points(std::move(points))
+    , m_tangents(std::move(tangents))
 {
   if (m_points.rows() < 2 || m_tangents.rows() != m_points.rows())
     fail("a centerline needs at least two points with a tangent each (got {} and {})",

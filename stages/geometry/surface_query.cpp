@@ -25,8 +25,14 @@ using TriangleIterator = std::vector<Triangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
-Point to_cgal(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
-Eigen::Vector3d to_eigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
+Point to_cgal(const Eigen::Vector3d& p)
+{
+  return {p.x(), p.y(), p.z()};
+}
+Eigen::Vector3d to_eigen(const Point& p)
+{
+  return {p.x(), p.y(), p.z()};
+}
 
 /// A fixed direction unlikely to be parallel to any mesh edge or face.
 const Eigen::Vector3d kGenericDirection = Eigen::Vector3d(0.5773, 0.5774, 0.5774).normalized();
@@ -40,7 +46,7 @@ struct SurfaceQuery::Tree {
 };
 
 SurfaceQuery::SurfaceQuery(const TriangleSurface& surface)
-  : m_tree(std::make_unique<Tree>())
+    : m_tree(std::make_unique<Tree>())
 {
   if (surface.F.rows() == 0)
     fail("cannot query an empty surface");
@@ -63,7 +69,10 @@ SurfaceQuery::~SurfaceQuery() = default;
 SurfaceQuery::SurfaceQuery(SurfaceQuery&&) noexcept = default;
 SurfaceQuery& SurfaceQuery::operator=(SurfaceQuery&&) noexcept = default;
 
-const TriangleSurface& SurfaceQuery::surface() const { return m_tree->surface; }
+const TriangleSurface& SurfaceQuery::surface() const
+{
+  return m_tree->surface;
+}
 
 SurfaceQuery::Closest SurfaceQuery::closest(const Eigen::Vector3d& p) const
 {

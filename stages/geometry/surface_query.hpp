@@ -31,7 +31,8 @@ public:
   double distance(const Eigen::Vector3d& p) const { return closest(p).distance; }
 
   /// Parameters t > 0 (sorted) where origin + t * direction crosses the surface.
-  std::vector<double> ray_hits(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction) const;
+  std::vector<double> ray_hits(const Eigen::Vector3d& origin,
+                               const Eigen::Vector3d& direction) const;
 
   /// The nearest crossing of the ray origin + t * direction, t > min_t, if any.
   std::optional<Eigen::Vector3d> first_hit(const Eigen::Vector3d& origin,

@@ -10,11 +10,11 @@
 namespace ligsim {
 
 struct TopologyReport {
-  int boundary_edges = 0;           ///< edges with one triangle: holes in the surface
-  int nonmanifold_edges = 0;        ///< edges with three or more triangles
-  int inconsistent_edges = 0;       ///< edges whose two triangles run it the same way
-  int degenerate_triangles = 0;     ///< repeated vertex indices or zero area
-  std::vector<Eigen::Vector3d> boundary_edge_midpoints; ///< a few of them, to say where, mm
+  int boundary_edges = 0;       ///< edges with one triangle: holes in the surface
+  int nonmanifold_edges = 0;    ///< edges with three or more triangles
+  int inconsistent_edges = 0;   ///< edges whose two triangles run it the same way
+  int degenerate_triangles = 0; ///< repeated vertex indices or zero area
+  std::vector<Eigen::Vector3d> boundary_edge_midpoints;   ///< a few of them, to say where, mm
   Eigen::Vector3d boundary_min = Eigen::Vector3d::Zero(); ///< bounding box of the boundary edges
   Eigen::Vector3d boundary_max = Eigen::Vector3d::Zero();
 

@@ -9,8 +9,8 @@
 #include <vtkCleanPolyData.h>
 #include <vtkDataArray.h>
 #include <vtkOBJReader.h>
-#include <vtkPointData.h>
 #include <vtkPLYReader.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
 #include <vtkSTLReader.h>
@@ -36,8 +36,7 @@ std::string lower_extension(const fs::path& file)
   return extension;
 }
 
-template <class Reader>
-vtkSmartPointer<vtkPolyData> run_reader(const fs::path& file)
+template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& file)
 {
   auto reader = vtkSmartPointer<Reader>::New();
   const VtkErrorTrap trap(reader);
@@ -67,7 +66,8 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 
 } // namespace
 
-TriangleSurface read_surface(const fs::path& file, std::map<std::string, Eigen::VectorXd>* point_arrays)
+TriangleSurface read_surface(const fs::path& file,
+                             std::map<std::string, Eigen::VectorXd>* point_arrays)
 {
   if (!fs::is_regular_file(file))
     fail("missing surface file '{}'", file.string());
@@ -80,8 +80,8 @@ TriangleSurface read_surface(const fs::path& file, std::map<std::string, Eigen::
     double p[3];
     raw->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      fail("'{}': vertex {} has a non-finite coordinate ({}, {}, {})", file.string(), i, p[0],
-           p[1], p[2]);
+      fail("'{}': vertex {} has a non-finite coordinate ({}, {}, {})", file.string(), i, p[0], p[1],
+           p[2]);
   }
 
   auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
@@ -137,8 +137,8 @@ void require_closed_manifold(const TriangleSurface& surface, const std::string& 
     fail("{} is not a manifold: {} edges are shared by three or more triangles", what,
          report.nonmanifold_edges);
   if (report.inconsistent_edges > 0)
-    fail("{} is not consistently oriented: {} edges are run the same way by both triangles",
-         what, report.inconsistent_edges);
+    fail("{} is not consistently oriented: {} edges are run the same way by both triangles", what,
+         report.inconsistent_edges);
   const auto crossings = self_intersections(surface, 1);
   if (!crossings.empty()) {
     const auto [a, b] = crossings.front();

@@ -43,14 +43,11 @@ Points from_vtk_points(vtkPoints* points)
   return V;
 }
 
-template <class T>
-struct VtkArrayFor;
-template <>
-struct VtkArrayFor<float> {
+template <class T> struct VtkArrayFor;
+template <> struct VtkArrayFor<float> {
   using type = vtkFloatArray;
 };
-template <>
-struct VtkArrayFor<std::uint8_t> {
+template <> struct VtkArrayFor<std::uint8_t> {
   using type = vtkUnsignedCharArray;
 };
 
@@ -83,7 +80,7 @@ TriangleSurface from_polydata(vtkPolyData* polydata)
     if (ids->GetNumberOfIds() != 3)
       fail("polygon {} has {} vertices, expected a triangle", f, ids->GetNumberOfIds());
     surface.F.row(f++) << static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
-      static_cast<int>(ids->GetId(2));
+        static_cast<int>(ids->GetId(2));
   }
   return surface;
 }
@@ -100,7 +97,10 @@ vtkSmartPointer<vtkPolyData> polyline_to_polydata(const Points& points)
   return polydata;
 }
 
-Points points_of(vtkPolyData* polydata) { return from_vtk_points(polydata->GetPoints()); }
+Points points_of(vtkPolyData* polydata)
+{
+  return from_vtk_points(polydata->GetPoints());
+}
 
 template <class T>
 vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name)
@@ -119,8 +119,7 @@ vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& n
   return image;
 }
 
-template <class T>
-Grid<T> from_image(vtkImageData* image, const std::string& name)
+template <class T> Grid<T> from_image(vtkImageData* image, const std::string& name)
 {
   vtkDataArray* array = image->GetPointData()->GetArray(name.c_str());
   if (array == nullptr || array->GetNumberOfComponents() != 1)

@@ -30,8 +30,7 @@ Points points_of(vtkPolyData* polydata);
 template <class T>
 vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name);
 /// The array `name` of an image; throws InputError if it is missing or the image is not isotropic.
-template <class T>
-Grid<T> from_image(vtkImageData* image, const std::string& name);
+template <class T> Grid<T> from_image(vtkImageData* image, const std::string& name);
 
 vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh);
 /// Tetrahedra only; throws InputError if another cell type is present.

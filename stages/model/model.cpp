@@ -80,7 +80,8 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
   return model;
 }
 
-Axis default_flexion_axis(const TriangleSurface& ligament, const Eigen::Vector3d& femoral_attachment)
+Axis default_flexion_axis(const TriangleSurface& ligament,
+                          const Eigen::Vector3d& femoral_attachment)
 {
   const Eigen::RowVector3d mean = ligament.V.colwise().mean();
   const Eigen::MatrixX3d centred = ligament.V.rowwise() - mean;

@@ -17,10 +17,10 @@ struct Parameters {
 
 struct Model {
   TetMesh mesh;
-  Eigen::MatrixX3d fibers;          ///< #T x 3, length 1 + in-situ strain
-  std::vector<bool> femur_nodes;    ///< #V: nodes bound to the femur (moved with it)
-  std::vector<bool> tibia_nodes;    ///< #V: nodes bound to the tibia (fixed)
-  int boundary_nodes = 0;           ///< nodes on the mesh surface
+  Eigen::MatrixX3d fibers;       ///< #T x 3, length 1 + in-situ strain
+  std::vector<bool> femur_nodes; ///< #V: nodes bound to the femur (moved with it)
+  std::vector<bool> tibia_nodes; ///< #V: nodes bound to the tibia (fixed)
+  int boundary_nodes = 0;        ///< nodes on the mesh surface
 };
 
 /// The nodes on the boundary of a tet mesh (on a face that belongs to one tet only).
@@ -44,6 +44,7 @@ struct Axis {
 /// (the MCL's femoral insertion lies at the medial epicondyle, on the transepicondylar axis),
 /// along the ligament's thinnest principal direction (a collateral ligament is a band lying
 /// against the side of the knee, so its thickness runs mediolaterally). Oriented with x >= 0.
-Axis default_flexion_axis(const TriangleSurface& ligament, const Eigen::Vector3d& femoral_attachment);
+Axis default_flexion_axis(const TriangleSurface& ligament,
+                          const Eigen::Vector3d& femoral_attachment);
 
 } // namespace ligsim::model

@@ -77,7 +77,7 @@ std::vector<Eigen::Vector2d> rounded_rectangle(double width, double height, doub
 {
   const Eigen::Vector2d half(width / 2 - corner, height / 2 - corner);
   const Eigen::Vector2d centres[4] = {
-    {half.x(), half.y()}, {-half.x(), half.y()}, {-half.x(), -half.y()}, {half.x(), -half.y()}};
+      {half.x(), half.y()}, {-half.x(), half.y()}, {-half.x(), -half.y()}, {half.x(), -half.y()}};
   std::vector<Eigen::Vector2d> points;
   for (int c = 0; c < 4; ++c) {
     for (int k = 0; k <= corner_segments; ++k) {
@@ -87,7 +87,8 @@ std::vector<Eigen::Vector2d> rounded_rectangle(double width, double height, doub
     // The straight side to the next corner, without its end points.
     const double phi = kPi / 2 * (c + 1);
     const Eigen::Vector2d from = points.back();
-    const Eigen::Vector2d to = centres[(c + 1) % 4] + corner * Eigen::Vector2d(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d to =
+        centres[(c + 1) % 4] + corner * Eigen::Vector2d(std::cos(phi), std::sin(phi));
     const int pieces = std::max(1, static_cast<int>(std::ceil((to - from).norm() / step)));
     for (int k = 1; k < pieces; ++k)
       points.push_back(from + (to - from) * (static_cast<double>(k) / pieces));
@@ -95,7 +96,10 @@ std::vector<Eigen::Vector2d> rounded_rectangle(double width, double height, doub
   return points;
 }
 
-int rings_for(double length, double step) { return std::max(2, static_cast<int>(std::ceil(length / step)) + 1); }
+int rings_for(double length, double step)
+{
+  return std::max(2, static_cast<int>(std::ceil(length / step)) + 1);
+}
 
 } // namespace
 
@@ -117,7 +121,8 @@ Shape torus_tube(double bend_radius_mm, double tube_radius_mm, double angle_deg,
   const double span = angle_deg * kPi / 180.0;
   shape.axis.length_mm = bend_radius_mm * span;
   shape.axis.point = [=](double u) {
-    return Eigen::Vector3d(bend_radius_mm * std::cos(u * span), bend_radius_mm * std::sin(u * span), 0);
+    return Eigen::Vector3d(bend_radius_mm * std::cos(u * span), bend_radius_mm * std::sin(u * span),
+                           0);
   };
   shape.axis.tangent = [=](double u) {
     return Eigen::Vector3d(-std::sin(u * span), std::cos(u * span), 0);
@@ -150,7 +155,7 @@ Shape ligament_band(double length_mm, double width_mm, double thickness_mm)
   const double step = std::min(1.0, thickness_mm / 3);
   auto section = rounded_rectangle(thickness_mm, width_mm, 0.4 * thickness_mm, 6, step);
   shape.surface =
-    sweep(shape.axis, Eigen::Vector3d::UnitY(), section, rings_for(shape.axis.length_mm, step));
+      sweep(shape.axis, Eigen::Vector3d::UnitY(), section, rings_for(shape.axis.length_mm, step));
 
   // Bone proxies. The femur caps the proximal end, 0.2 mm above it. The tibia is a 10 mm thick
   // slab hugging the inner (concave) side of the distal quarter, 0.3 mm away, as the MCL's long
@@ -163,8 +168,11 @@ Shape ligament_band(double length_mm, double width_mm, double thickness_mm)
   distal.length_mm = 0.25 * shape.axis.length_mm;
   const double gap = 0.3, depth = 10.0;
   std::vector<Eigen::Vector2d> slab;
-  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(-thickness_mm / 2 - gap, -width_mm), Eigen::Vector2d(-thickness_mm / 2 - gap, width_mm),
-                                        Eigen::Vector2d(-thickness_mm / 2 - gap - depth, width_mm), Eigen::Vector2d(-thickness_mm / 2 - gap - depth, -width_mm)})
+  for (const Eigen::Vector2d& corner :
+       {Eigen::Vector2d(-thickness_mm / 2 - gap, -width_mm),
+        Eigen::Vector2d(-thickness_mm / 2 - gap, width_mm),
+        Eigen::Vector2d(-thickness_mm / 2 - gap - depth, width_mm),
+        Eigen::Vector2d(-thickness_mm / 2 - gap - depth, -width_mm)})
     slab.push_back(corner);
   shape.tibia = sweep(distal, Eigen::Vector3d::UnitY(), slab, rings_for(distal.length_mm, 1.0));
   return shape;
@@ -176,14 +184,14 @@ TriangleSurface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
   surface.V.resize(8, 3);
   for (int i = 0; i < 8; ++i)
     surface.V.row(i) << ((i & 1) ? hi.x() : lo.x()), ((i & 2) ? hi.y() : lo.y()),
-      ((i & 4) ? hi.z() : lo.z());
+        ((i & 4) ? hi.z() : lo.z());
   surface.F.resize(12, 3);
   surface.F << 0, 2, 1, 1, 2, 3, // z = lo
-    4, 5, 6, 5, 7, 6,            // z = hi
-    0, 1, 4, 1, 5, 4,            // y = lo
-    2, 6, 3, 3, 6, 7,            // y = hi
-    0, 4, 2, 2, 4, 6,            // x = lo
-    1, 3, 5, 3, 7, 5;            // x = hi
+      4, 5, 6, 5, 7, 6,          // z = hi
+      0, 1, 4, 1, 5, 4,          // y = lo
+      2, 6, 3, 3, 6, 7,          // y = hi
+      0, 4, 2, 2, 4, 6,          // x = lo
+      1, 3, 5, 3, 7, 5;          // x = hi
   return surface;
 }
 

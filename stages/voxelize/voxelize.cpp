@@ -39,14 +39,14 @@ Mask voxelize(const SurfaceQuery& query, const Parameters& parameters)
 {
   const TriangleSurface& surface = query.surface();
   const double spacing =
-    parameters.spacing_mm > 0.0 ? parameters.spacing_mm : default_spacing(surface);
+      parameters.spacing_mm > 0.0 ? parameters.spacing_mm : default_spacing(surface);
   if (!(spacing > 0.0) || !std::isfinite(spacing))
     fail("invalid voxel spacing {} mm", spacing);
   const Eigen::Vector3d lo = surface.V.colwise().minCoeff().transpose();
   const Eigen::Vector3d hi = surface.V.colwise().maxCoeff().transpose();
   const int pad = parameters.padding_voxels;
-  const Eigen::Vector3i dims =
-    ((hi - lo) / spacing).array().ceil().cast<int>().matrix() + Eigen::Vector3i::Constant(2 * pad + 1);
+  const Eigen::Vector3i dims = ((hi - lo) / spacing).array().ceil().cast<int>().matrix() +
+                               Eigen::Vector3i::Constant(2 * pad + 1);
   const double count = static_cast<double>(dims.x()) * dims.y() * dims.z();
   if (count > parameters.max_voxels)
     fail("a {:.3f} mm voxel grid over this surface would hold {:.3g} voxels (limit {:.3g}): "

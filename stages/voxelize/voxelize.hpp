@@ -11,9 +11,9 @@ class SurfaceQuery;
 namespace ligsim::voxelize {
 
 struct Parameters {
-  double spacing_mm = 0.0;           ///< voxel edge; <= 0: default_spacing()
-  int padding_voxels = 2;            ///< empty voxels around the bounding box
-  double max_voxels = 3.0e7;         ///< refuse grids larger than this (memory guard)
+  double spacing_mm = 0.0;   ///< voxel edge; <= 0: default_spacing()
+  int padding_voxels = 2;    ///< empty voxels around the bounding box
+  double max_voxels = 3.0e7; ///< refuse grids larger than this (memory guard)
 };
 
 /// The default voxel edge: an eighth of the surface's mean thickness 2V/A (for a thin plate of

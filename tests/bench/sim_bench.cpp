@@ -19,8 +19,7 @@ namespace {
 
 void BM_StaticSolveReferenceCube(benchmark::State& state)
 {
-  const FebioReference reference =
-      read_febio_reference(LIGSIM_SOURCE_DIR "/data/febio-cube");
+  const FebioReference reference = read_febio_reference(LIGSIM_SOURCE_DIR "/data/febio-cube");
   const FebioMesh mesh = read_febio_mesh(reference.mesh_file);
   const FebioCase& c = reference.cases[3]; // par_t005_pen
   NewtonSettings settings;
@@ -39,7 +38,11 @@ void BM_StaticSolveReferenceCube(benchmark::State& state)
   state.counters["peak_rss_mib"] = ligsim::peak_rss_mib();
   state.SetLabel(c.name + ", " + to_string(settings.linear_solver));
 }
-BENCHMARK(BM_StaticSolveReferenceCube)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StaticSolveReferenceCube)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_ImplicitFramesLigamentBar(benchmark::State& state)
 {
@@ -82,14 +85,18 @@ void BM_ImplicitFramesLigamentBar(benchmark::State& state)
         static_cast<double>(result.linear_iterations) / frames;
     state.counters["factorizations"] = result.factorizations;
   }
-  state.counters["s_per_frame"] = benchmark::Counter(
-      static_cast<double>(frames), benchmark::Counter::kIsIterationInvariantRate |
-                                       benchmark::Counter::kInvert);
+  state.counters["s_per_frame"] = benchmark::Counter(static_cast<double>(frames),
+                                                     benchmark::Counter::kIsIterationInvariantRate |
+                                                         benchmark::Counter::kInvert);
   state.counters["elements"] = static_cast<double>(mesh.T.rows());
   state.counters["peak_rss_mib"] = ligsim::peak_rss_mib();
   state.SetLabel(fmt::format("{} frames, {}", frames, to_string(settings.linear_solver)));
 }
-BENCHMARK(BM_ImplicitFramesLigamentBar)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ImplicitFramesLigamentBar)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 } // namespace
 

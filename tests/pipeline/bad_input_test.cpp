@@ -15,20 +15,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kMcl = source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl").string();
-const std::string kTibia = source_path("data/vhf-right-knee/VHF_Right_Bone_Tibia_smooth.stl").string();
+const std::string kMcl =
+    source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl").string();
+const std::string kTibia =
+    source_path("data/vhf-right-knee/VHF_Right_Bone_Tibia_smooth.stl").string();
 
 /// Runs a build expected to fail; checks the exit code, the one line and that `out` holds no file
 /// (or only the outputs of stages before the failing one, listed in `allowed`).
-void expect_clean_failure(const std::string& arguments, const fs::path& out, const std::string& words,
-                          const std::vector<std::string>& allowed = {})
+void expect_clean_failure(const std::string& arguments, const fs::path& out,
+                          const std::string& words, const std::vector<std::string>& allowed = {})
 {
   const CliResult result = run_ligsim(arguments + " --out " + out.string());
   EXPECT_NE(result.exit_code, 0) << arguments;
   ASSERT_FALSE(result.stderr_text.empty());
   // Progress lines start with "ligsim: <stage>:" or two spaces; the error is the one last line.
   const auto last_start = result.stderr_text.rfind('\n', result.stderr_text.size() - 2);
-  const std::string last = result.stderr_text.substr(last_start == std::string::npos ? 0 : last_start + 1);
+  const std::string last =
+      result.stderr_text.substr(last_start == std::string::npos ? 0 : last_start + 1);
   EXPECT_EQ(last.rfind("ligsim: error: ", 0), 0u) << result.stderr_text;
   EXPECT_EQ(std::count(last.begin(), last.end(), '\n'), 1) << last;
   EXPECT_NE(last.find(words), std::string::npos) << "expected '" << words << "' in: " << last;
@@ -54,26 +57,31 @@ fs::path write_text(const std::string& name, const std::string& text)
 
 TEST(BuildBadInput, MissingFile)
 {
-  expect_clean_failure("build --surface /nonexistent/mcl.stl", fresh_folder("missing"), "missing surface file");
+  expect_clean_failure("build --surface /nonexistent/mcl.stl", fresh_folder("missing"),
+                       "missing surface file");
 }
 
 TEST(BuildBadInput, UnknownFormat)
 {
   const fs::path file = write_text("ligsim_surface.xyz", "0 0 0\n");
-  expect_clean_failure("build --surface " + file.string(), fresh_folder("format"), "unknown surface format");
+  expect_clean_failure("build --surface " + file.string(), fresh_folder("format"),
+                       "unknown surface format");
 }
 
 TEST(BuildBadInput, OpenSurface)
 {
   // A tetrahedron missing one face.
-  const fs::path file = write_text("ligsim_open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n");
-  expect_clean_failure("build --surface " + file.string(), fresh_folder("open"), "3 boundary edges");
+  const fs::path file = write_text(
+      "ligsim_open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n");
+  expect_clean_failure("build --surface " + file.string(), fresh_folder("open"),
+                       "3 boundary edges");
 }
 
 TEST(BuildBadInput, NanCoordinate)
 {
   // A binary STL tetrahedron, one corner NaN, as a broken export writes it.
-  const fs::path file = fs::temp_directory_path() / (std::to_string(::getpid()) + "_ligsim_nan.stl");
+  const fs::path file =
+      fs::temp_directory_path() / (std::to_string(::getpid()) + "_ligsim_nan.stl");
   {
     const float nan = std::nanf("");
     const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}};
@@ -97,7 +105,8 @@ TEST(BuildBadInput, NanCoordinate)
 
 TEST(BuildBadInput, EmptyAttachmentArea)
 {
-  expect_clean_failure("build --surface " + kMcl + " --tibia " + kTibia + " --attach-distance 0.0001",
+  expect_clean_failure("build --surface " + kMcl + " --tibia " + kTibia +
+                           " --attach-distance 0.0001",
                        fresh_folder("empty"), "attachment area is empty");
 }
 
@@ -114,13 +123,14 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
   for (int box = 0; box < 2; ++box) {
     const double z0 = box * 20.0;
     for (int i = 0; i < 8; ++i)
-      obj += "v " + std::to_string((i & 1) * 4.0) + " " + std::to_string(((i >> 1) & 1) * 4.0) + " " +
-             std::to_string(z0 + ((i >> 2) & 1) * 10.0) + "\n";
+      obj += "v " + std::to_string((i & 1) * 4.0) + " " + std::to_string(((i >> 1) & 1) * 4.0) +
+             " " + std::to_string(z0 + ((i >> 2) & 1) * 10.0) + "\n";
     const int o = box * 8 + 1;
     const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                               {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
     for (const auto& f : faces)
-      obj += "f " + std::to_string(o + f[0]) + " " + std::to_string(o + f[1]) + " " + std::to_string(o + f[2]) + "\n";
+      obj += "f " + std::to_string(o + f[0]) + " " + std::to_string(o + f[1]) + " " +
+             std::to_string(o + f[2]) + "\n";
   }
   const fs::path file = write_text("ligsim_two_boxes.obj", obj);
   expect_clean_failure("centerline --surface " + file.string(), fresh_folder("unconnected"),
@@ -129,6 +139,8 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
 
 TEST(BuildBadInput, ConfigWithUnknownKey)
 {
-  const fs::path config = write_text("ligsim_bad.toml", "[input]\nsurface = \"x.stl\"\n[centerline]\nalfa = 0.2\n");
-  expect_clean_failure("build --config " + config.string(), fresh_folder("config"), "unknown key 'alfa'");
+  const fs::path config =
+      write_text("ligsim_bad.toml", "[input]\nsurface = \"x.stl\"\n[centerline]\nalfa = 0.2\n");
+  expect_clean_failure("build --config " + config.string(), fresh_folder("config"),
+                       "unknown key 'alfa'");
 }

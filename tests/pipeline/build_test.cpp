@@ -40,7 +40,11 @@ std::map<std::string, std::string> statuses(const nlohmann::json& summary)
 /// Reads every VTK output back with VTK's readers and checks the arrays the next stage needs.
 void expect_readable_outputs(const fs::path& dir)
 {
-  EXPECT_GT(read_vtp(dir / "attachments.vtp")->GetPointData()->GetArray("femur_attachment")->GetNumberOfTuples(), 0);
+  EXPECT_GT(read_vtp(dir / "attachments.vtp")
+                ->GetPointData()
+                ->GetArray("femur_attachment")
+                ->GetNumberOfTuples(),
+            0);
   EXPECT_NE(read_vti(dir / "mask.vti")->GetPointData()->GetArray("inside"), nullptr);
   EXPECT_NE(read_vti(dir / "distance.vti")->GetPointData()->GetArray("distance"), nullptr);
   EXPECT_NE(read_vtp(dir / "centerline.vtp")->GetPointData()->GetArray("tangent"), nullptr);
@@ -58,8 +62,8 @@ void expect_readable_outputs(const fs::path& dir)
 /// Every centerline point lies inside the surface (the two extended end points on it), the line
 /// passes by both attachment areas (within `near_mm` of a vertex of each), and it starts on the
 /// femoral side.
-void expect_centerline_inside_between_attachments(const fs::path& dir, const TriangleSurface& surface,
-                                                  double near_mm)
+void expect_centerline_inside_between_attachments(const fs::path& dir,
+                                                  const TriangleSurface& surface, double near_mm)
 {
   const SurfaceQuery query(surface);
   const Points line = io::points_of(read_vtp(dir / "centerline.vtp"));
@@ -97,8 +101,8 @@ TEST(Build, SyntheticBandWithCacheReuse)
   const fs::path shape = fresh_folder("band_shape"), out = fresh_folder("band_model");
   ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
   const std::string inputs = "--surface " + (shape / "surface.stl").string() + " --femur " +
-                             (shape / "femur.stl").string() + " --tibia " + (shape / "tibia.stl").string() +
-                             " --voxel 0.4 --out " + out.string();
+                             (shape / "femur.stl").string() + " --tibia " +
+                             (shape / "tibia.stl").string() + " --voxel 0.4 --out " + out.string();
   const CliResult first = run_ligsim("build " + inputs);
   ASSERT_EQ(first.exit_code, 0) << first.stderr_text;
   for (const auto& [name, status] : statuses(read_summary(out)))
@@ -106,7 +110,9 @@ TEST(Build, SyntheticBandWithCacheReuse)
   expect_readable_outputs(out);
   expect_centerline_inside_between_attachments(out, io::read_surface(shape / "surface.stl"), 2.0);
   const nlohmann::json summary = read_summary(out);
-  EXPECT_NE(summary["stages"]["attachments"]["figures"]["femur"]["rule"].get<std::string>().find("proximity"), std::string::npos);
+  EXPECT_NE(summary["stages"]["attachments"]["figures"]["femur"]["rule"].get<std::string>().find(
+                "proximity"),
+            std::string::npos);
   EXPECT_GT(summary["stages"]["model"]["figures"]["femur_nodes"].get<int>(), 0);
   EXPECT_GT(summary["stages"]["model"]["figures"]["tibia_nodes"].get<int>(), 0);
 
@@ -128,7 +134,10 @@ TEST(Build, StageSubcommandRunsOnlyWhatItNeeds)
 {
   const fs::path shape = fresh_folder("cyl_shape"), out = fresh_folder("cyl_distance");
   ASSERT_EQ(run_ligsim("synth cylinder --out " + shape.string()).exit_code, 0);
-  ASSERT_EQ(run_ligsim("distance --surface " + (shape / "surface.stl").string() + " --out " + out.string()).exit_code, 0);
+  ASSERT_EQ(run_ligsim("distance --surface " + (shape / "surface.stl").string() + " --out " +
+                       out.string())
+                .exit_code,
+            0);
   EXPECT_TRUE(fs::exists(out / "distance.vti"));
   EXPECT_FALSE(fs::exists(out / "mesh.vtu"));
   EXPECT_EQ(statuses(read_summary(out)).size(), 2u); // voxelize, distance
@@ -137,8 +146,9 @@ TEST(Build, StageSubcommandRunsOnlyWhatItNeeds)
 TEST(Build, RealMclCompletesEveryStage)
 {
   const fs::path out = fresh_folder("mcl");
-  const CliResult result = run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
-                                      " --out " + out.string());
+  const CliResult result =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
+                 " --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   expect_readable_outputs(out);
   const nlohmann::json summary = read_summary(out);
@@ -151,5 +161,6 @@ TEST(Build, RealMclCompletesEveryStage)
   EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
   EXPECT_GE(mesh["min_dihedral_deg"].get<double>(), 5.0);
   expect_centerline_inside_between_attachments(
-    out, io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl")), 2.0);
+      out, io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl")),
+      2.0);
 }

@@ -20,9 +20,11 @@ inline CliResult run_ligsim(const std::string& arguments)
 {
   // ctest runs test processes in parallel: the log's name carries the process id.
   static int calls = 0;
-  const std::filesystem::path log = std::filesystem::temp_directory_path() /
-                                    ("ligsim_cli_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
-  const std::string command = std::string(LIGSIM_BINARY) + " " + arguments + " 2> " + log.string() + " > /dev/null";
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() /
+      ("ligsim_cli_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
+  const std::string command =
+      std::string(LIGSIM_BINARY) + " " + arguments + " 2> " + log.string() + " > /dev/null";
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

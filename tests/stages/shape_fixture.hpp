@@ -69,7 +69,10 @@ inline double distance_to_axis(const synthetic::Axis& axis, const Eigen::Vector3
 }
 
 /// One point as a 1 x 3 point list (an attachment area of one point).
-inline Points as_points(const Eigen::Vector3d& p) { return p.transpose(); }
+inline Points as_points(const Eigen::Vector3d& p)
+{
+  return p.transpose();
+}
 
 /// The shape's true axis as a polyline with `count` points.
 inline Polyline axis_polyline(const synthetic::Axis& axis, int count = 400)
@@ -100,7 +103,8 @@ inline TetMesh structured_tets(const Mask& mask, int stride)
   for (int k = 0; k < cubes.z(); ++k)
     for (int j = 0; j < cubes.y(); ++j)
       for (int i = 0; i < cubes.x(); ++i) {
-        const Eigen::Vector3d centre = mask.point((2 * i + 1) * stride / 2, (2 * j + 1) * stride / 2, (2 * k + 1) * stride / 2);
+        const Eigen::Vector3d centre = mask.point(
+            (2 * i + 1) * stride / 2, (2 * j + 1) * stride / 2, (2 * k + 1) * stride / 2);
         const Eigen::Vector3i c = mask.voxel_coordinates(centre).array().round().cast<int>();
         if (!mask(c.x(), c.y(), c.z()))
           continue;
@@ -109,7 +113,8 @@ inline TetMesh structured_tets(const Mask& mask, int stride)
           corner[b] = node(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1));
         for (const auto& path : paths) {
           Eigen::Vector4i t(corner[0], corner[path[0]], corner[path[1]], corner[7]);
-          const Eigen::Vector3d p0 = points[t[0]], p1 = points[t[1]], p2 = points[t[2]], p3 = points[t[3]];
+          const Eigen::Vector3d p0 = points[t[0]], p1 = points[t[1]], p2 = points[t[2]],
+                                p3 = points[t[3]];
           if ((p1 - p0).dot((p2 - p0).cross(p3 - p0)) < 0)
             std::swap(t[1], t[2]);
           tets.push_back(t);

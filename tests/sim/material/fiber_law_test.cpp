@@ -69,9 +69,9 @@ TEST(FiberLaw, WeissToeEnergyMatchesTheExponentialIntegral)
   const FiberParameters p = mcl_fiber(FiberConvention::weiss);
   const FiberLaw law(p);
   for (double lambda : {1.005, 1.02, 1.0299}) {
-    const double exact = p.c3_mpa * (std::exp(-p.c4) * (std::expint(p.c4 * lambda) -
-                                                        std::expint(p.c4)) -
-                                     std::log(lambda));
+    const double exact =
+        p.c3_mpa *
+        (std::exp(-p.c4) * (std::expint(p.c4 * lambda) - std::expint(p.c4)) - std::log(lambda));
     EXPECT_NEAR(law.evaluate(lambda).energy, exact, 1e-10 * std::abs(exact) + 1e-14);
   }
 }

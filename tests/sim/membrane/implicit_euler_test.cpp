@@ -21,7 +21,8 @@ struct Sheet {
 
 Sheet pulled_sheet(double fiber_deg)
 {
-  Sheet sheet{rectangle_mesh(4.0, 2.0, 0.4, 0.15, 8), CorotationalElements(test::lens_like_material())};
+  Sheet sheet{rectangle_mesh(4.0, 2.0, 0.4, 0.15, 8),
+              CorotationalElements(test::lens_like_material())};
   for (double& angle : sheet.mesh.fiber_angle_rad)
     angle = fiber_deg * M_PI / 180.0;
   sheet.elements.rebuild(sheet.mesh);

@@ -1,8 +1,8 @@
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "sim/mesh/structured_mesh.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/scene_runner.hpp"
-#include "sim/mesh/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <vtkCellArray.h>
@@ -166,12 +166,11 @@ TEST(SceneFile, ErrorsNameTheTableAndKey)
   EXPECT_NE(parse_error(replaced(cube_scene, "[fibers]", "[fibers]\ncell_data = \"fiber\""))
                 .find("exactly one"),
             std::string::npos);
-  EXPECT_NE(parse_error(replaced(cube_scene, "[solver]", "[solver]\nkind = \"implicit\""))
-                .find("kind"),
-            std::string::npos);
+  EXPECT_NE(
+      parse_error(replaced(cube_scene, "[solver]", "[solver]\nkind = \"implicit\"")).find("kind"),
+      std::string::npos);
   EXPECT_NE(parse_error("[mesh\n").find("line"), std::string::npos);
-  EXPECT_NE(parse_error("[mesh]\nfile = \"missing.vtu\"\n").find("missing.vtu"),
-            std::string::npos);
+  EXPECT_NE(parse_error("[mesh]\nfile = \"missing.vtu\"\n").find("missing.vtu"), std::string::npos);
   const std::string unconstrained =
       replaced(replaced(cube_scene, "[[fix]]\nset = \"bottom\"\n", ""),
                "[[displace]]\nset = \"corner\"\ndisplacement_mm = { x = 0.0 }\n", "");

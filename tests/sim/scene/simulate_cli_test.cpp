@@ -46,8 +46,8 @@ TEST(SimulateCli, CubeTensionSceneWritesItsOutputs)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_cli_cube";
   fs::remove_all(out);
-  const CliRun run = run_ligsim("simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-tension.toml --out " +
-                             out.string());
+  const CliRun run = run_ligsim(
+      "simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-tension.toml --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
   EXPECT_TRUE(fs::exists(out / "series.pvd"));
   EXPECT_TRUE(fs::exists(out / "step_0005.vtu"));
@@ -63,8 +63,8 @@ TEST(SimulateCli, DynamicSceneComesToRest)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_cli_dynamic";
   fs::remove_all(out);
-  const CliRun run = run_ligsim("simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-dynamic.toml --out " +
-                             out.string());
+  const CliRun run = run_ligsim(
+      "simulate " LIGSIM_SOURCE_DIR "/data/scenes/cube-dynamic.toml --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
   const nlohmann::json summary = read_json(out / "summary.json");
   EXPECT_TRUE(summary["stages"]["solve"]["reached_equilibrium"].get<bool>());

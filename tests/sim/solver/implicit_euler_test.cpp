@@ -84,8 +84,8 @@ TEST(ImplicitEuler, HugeTimeStepsStayFiniteAndUninverted)
   ImplicitEuler solver(body, cube.conditions, settings);
   Eigen::VectorXd x = body.rest_positions();
   double worst_j = 1.0;
-  const DynamicResult result = solver.run(
-      x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+  const DynamicResult result =
+      solver.run(x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
         worst_j = std::min(worst_j, frame.min_j);
       });
   ASSERT_TRUE(result.completed) << result.failure;
@@ -116,6 +116,7 @@ TEST(ImplicitEuler, PrescribedRigidMotionIsFollowed)
   Eigen::VectorXd x = body.rest_positions();
   ASSERT_TRUE(solver.run(x).completed);
   for (int node : top.nodes)
-    EXPECT_LT((x.segment<3>(3 * node) - motion.apply(cube.mesh.V.row(node).transpose(), 1.0)).norm(),
-              1e-12);
+    EXPECT_LT(
+        (x.segment<3>(3 * node) - motion.apply(cube.mesh.V.row(node).transpose(), 1.0)).norm(),
+        1e-12);
 }

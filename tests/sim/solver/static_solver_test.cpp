@@ -160,6 +160,5 @@ TEST(StaticSolver, ConflictingConstraintsAreRejected)
   again.name = "again";
   again.displacement_mm = Eigen::Vector3d(0, 0, 0.1);
   conditions.constraints.push_back(again);
-  EXPECT_THROW(DofPartition(static_cast<int>(mesh.V.rows()), conditions, {}),
-               ligsim::InputError);
+  EXPECT_THROW(DofPartition(static_cast<int>(mesh.V.rows()), conditions, {}), ligsim::InputError);
 }

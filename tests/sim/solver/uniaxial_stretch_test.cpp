@@ -26,8 +26,8 @@ double energy_density(const MaterialParameters& p, double fiber_length, double l
   const double J = lambda * m * m;
   const double s = std::pow(J, -2.0 / 3.0);
   const double i1 = s * (2 * m * m + lambda * lambda);
-  double w = 0.5 * p.mu_mpa * (i1 - 3) +
-             volumetric_response(p.volumetric, p.bulk_modulus_mpa, J).energy;
+  double w =
+      0.5 * p.mu_mpa * (i1 - 3) + volumetric_response(p.volumetric, p.bulk_modulus_mpa, J).energy;
   if (p.fiber) {
     const double i4 = s * lambda * lambda * fiber_length * fiber_length;
     w += FiberLaw(*p.fiber).evaluate(std::sqrt(i4)).energy;
@@ -96,8 +96,8 @@ Simulated simulate(const MaterialParameters& p, double fiber_length, double lamb
   StaticSolver solver(body, conditions, settings);
   Eigen::VectorXd x = body.rest_positions();
   Eigen::VectorXd residual;
-  const StaticResult result = solver.solve(
-      x, [&](const StepReport&, const Eigen::VectorXd&, const Eigen::VectorXd& r) { residual = r; });
+  const StaticResult result = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd& r) { residual = r; });
   EXPECT_TRUE(result.converged) << result.failure;
   Simulated out;
   out.force_n = reaction_forces(conditions, residual)[3].z();

@@ -58,9 +58,9 @@ TEST(FebioReference, VerifyJsonHasTheIssueSchema)
   result.name = "x";
   result.converged = true;
   const nlohmann::json json = cube_results_json({result});
-  for (const char* key : {"name", "energy", "avg_error_pct", "max_error_pct", "avg_error_all_pct",
-                          "max_error_all_pct", "avg_fiber_strain_pct", "volume_change_pct",
-                          "wall_s", "febio_wall_s"})
+  for (const char* key :
+       {"name", "energy", "avg_error_pct", "max_error_pct", "avg_error_all_pct",
+        "max_error_all_pct", "avg_fiber_strain_pct", "volume_change_pct", "wall_s", "febio_wall_s"})
     EXPECT_TRUE(json["cases"][0].contains(key)) << key;
   EXPECT_EQ(json["cases"][0]["energy"], "matched");
 }

@@ -32,17 +32,23 @@ double max_deviation(const centerline::Centerline& line, const synthetic::Axis& 
   return worst;
 }
 
-Eigen::Matrix3d oblique() { return Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix(); }
+Eigen::Matrix3d oblique()
+{
+  return Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix();
+}
 
 } // namespace
 
 TEST(Centerline, MedialPathOnACylinderFollowsTheAxis)
 {
-  for (const Eigen::Matrix3d& rotation : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), oblique()}) {
-    const auto v = test::voxelise(test::transformed(synthetic::cylinder(3.0, 30.0), rotation, {0.11, 0.07, 0.0}), 0.4);
+  for (const Eigen::Matrix3d& rotation :
+       {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), oblique()}) {
+    const auto v = test::voxelise(
+        test::transformed(synthetic::cylinder(3.0, 30.0), rotation, {0.11, 0.07, 0.0}), 0.4);
     const auto line = extract(v, 1.0);
     const double deviation = max_deviation(line, v.shape.axis, 3.0);
-    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm", std::to_string(deviation));
+    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm",
+                   std::to_string(deviation));
     EXPECT_LE(deviation, v.mask.spacing);
   }
 }
@@ -70,8 +76,10 @@ TEST(Centerline, ShortestPathOnACylinderIsTheStraightSegment)
 {
   // alpha = 0: the straight line through the end points (extended to the caps), on a
   // grid-aligned and an oblique axis.
-  for (const Eigen::Matrix3d& rotation : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), oblique()}) {
-    const auto v = test::voxelise(test::transformed(synthetic::cylinder(3.0, 30.0), rotation, {0, 0, 0}), 0.4);
+  for (const Eigen::Matrix3d& rotation :
+       {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), oblique()}) {
+    const auto v =
+        test::voxelise(test::transformed(synthetic::cylinder(3.0, 30.0), rotation, {0, 0, 0}), 0.4);
     const Eigen::Vector3d a = v.shape.axis.point(0.02), b = v.shape.axis.point(0.98);
     const auto line = extract(v, 0.0);
     double worst = 0.0;
@@ -80,14 +88,16 @@ TEST(Centerline, ShortestPathOnACylinderIsTheStraightSegment)
       const double s = (p - a).dot(b - a) / (b - a).squaredNorm();
       worst = std::max(worst, (p - (a + s * (b - a))).norm());
     }
-    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm", std::to_string(worst));
+    RecordProperty(rotation.isIdentity() ? "aligned_max_deviation_mm" : "oblique_max_deviation_mm",
+                   std::to_string(worst));
     EXPECT_LE(worst, v.mask.spacing);
   }
 }
 
 TEST(Centerline, RefinementLowersTheCostOfTheVoxelPath)
 {
-  const auto v = test::voxelise(test::transformed(synthetic::torus_tube(), oblique(), {0, 0, 0}), 0.5);
+  const auto v =
+      test::voxelise(test::transformed(synthetic::torus_tube(), oblique(), {0, 0, 0}), 0.5);
   const auto raw = extract(v, 0.1, 0.02, 0.98, false, false);
   const auto refined = extract(v, 0.1, 0.02, 0.98, true, false);
   EXPECT_LT(centerline::path_cost(refined.points, v.distance, 0.1),
@@ -98,16 +108,19 @@ TEST(Centerline, RefinementLowersTheCostOfTheVoxelPath)
 TEST(Centerline, DisconnectedAttachmentsAreAClearError)
 {
   auto a = synthetic::cylinder(2.0, 10.0, 32);
-  auto b = test::transformed(synthetic::cylinder(2.0, 10.0, 32), Eigen::Matrix3d::Identity(), {0, 0, 15});
+  auto b = test::transformed(synthetic::cylinder(2.0, 10.0, 32), Eigen::Matrix3d::Identity(),
+                             {0, 0, 15});
   TriangleSurface both = a.surface;
   both.V.conservativeResize(a.surface.V.rows() + b.surface.V.rows(), 3);
   both.V.bottomRows(b.surface.V.rows()) = b.surface.V;
   both.F.conservativeResize(a.surface.F.rows() + b.surface.F.rows(), 3);
-  both.F.bottomRows(b.surface.F.rows()) = b.surface.F.array() + static_cast<int>(a.surface.V.rows());
+  both.F.bottomRows(b.surface.F.rows()) =
+      b.surface.F.array() + static_cast<int>(a.surface.V.rows());
   a.surface = both;
   const auto v = test::voxelise(std::move(a), 0.4);
   try {
-    centerline::extract(v.mask, v.distance, test::as_points({0, 0, 2}), test::as_points({0, 0, 23}), {});
+    centerline::extract(v.mask, v.distance, test::as_points({0, 0, 2}), test::as_points({0, 0, 23}),
+                        {});
     FAIL() << "disconnected parts connected";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot be connected"), std::string::npos) << e.what();

@@ -60,7 +60,8 @@ TEST(Fibers, FollowTheAxisOfACylinder)
     ASSERT_GT(c.mesh.T.rows(), 1000);
     double worst = 0.0;
     for (Eigen::Index t = 0; t < c.mesh.T.rows(); ++t)
-      worst = std::max(worst, angle_deg(c.fibers.directions.row(t).transpose(), Eigen::Vector3d::UnitZ()));
+      worst = std::max(worst,
+                       angle_deg(c.fibers.directions.row(t).transpose(), Eigen::Vector3d::UnitZ()));
     RecordProperty(field::to_string(method) + "_worst_deg", std::to_string(worst));
     EXPECT_LT(worst, 2.0) << field::to_string(method);
   }

@@ -9,7 +9,10 @@ using namespace ligsim;
 namespace {
 constexpr double R = 3.0, L = 30.0;
 
-test::VoxelisedShape cylinder() { return test::voxelise(synthetic::cylinder(R, L, 128), 0.3); }
+test::VoxelisedShape cylinder()
+{
+  return test::voxelise(synthetic::cylinder(R, L, 128), 0.3);
+}
 } // namespace
 
 TEST(Field, GeometricIsTheRelativeRadiusOnACylinder)

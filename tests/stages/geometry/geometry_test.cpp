@@ -16,8 +16,8 @@ TEST(SyntheticShapes, AreClosedOutwardManifoldsWithTheRightVolume)
   const auto cylinder = synthetic::cylinder(3.0, 30.0, 96);
   const auto torus = synthetic::torus_tube(20.0, 3.0, 120.0, 64);
   const auto band = synthetic::ligament_band();
-  for (const TriangleSurface* s : {&cylinder.surface, &torus.surface, &band.surface,
-                                   &*band.femur, &*band.tibia}) {
+  for (const TriangleSurface* s :
+       {&cylinder.surface, &torus.surface, &band.surface, &*band.femur, &*band.tibia}) {
     const TopologyReport report = check_topology(*s);
     EXPECT_TRUE(report.closed_manifold());
     EXPECT_EQ(report.degenerate_triangles, 0);

@@ -12,9 +12,9 @@
 #include <vtkSTLWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include <filesystem>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 
 using namespace ligsim;
@@ -62,7 +62,8 @@ TEST(SurfaceReader, ReadsEveryFormatWithMergedVertices)
   const TriangleSurface cylinder = synthetic::cylinder(3.0, 20.0, 32).surface;
   auto data = io::to_polydata(cylinder);
   expect_same_shape(io::read_surface(write_with<vtkSTLWriter>(data, "c_bin.stl")), cylinder);
-  expect_same_shape(io::read_surface(write_with<vtkSTLWriter>(data, "c_ascii.stl", false)), cylinder);
+  expect_same_shape(io::read_surface(write_with<vtkSTLWriter>(data, "c_ascii.stl", false)),
+                    cylinder);
   expect_same_shape(io::read_surface(write_with<vtkOBJWriter>(data, "c.obj")), cylinder);
   expect_same_shape(io::read_surface(write_with<vtkPLYWriter>(data, "c.ply")), cylinder);
   expect_same_shape(io::read_surface(write_with<vtkXMLPolyDataWriter>(data, "c.vtp")), cylinder);
@@ -71,8 +72,8 @@ TEST(SurfaceReader, ReadsEveryFormatWithMergedVertices)
 
 TEST(SurfaceReader, ReadsTheRealMcl)
 {
-  const TriangleSurface mcl =
-    io::read_surface(fs::path(LIGSIM_SOURCE_DIR) / "data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl");
+  const TriangleSurface mcl = io::read_surface(
+      fs::path(LIGSIM_SOURCE_DIR) / "data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl");
   EXPECT_EQ(mcl.V.rows(), 1557);
   EXPECT_EQ(mcl.F.rows(), 3110);
   EXPECT_NO_THROW(io::require_closed_manifold(mcl, "MCL"));

@@ -8,7 +8,8 @@ using namespace ligsim;
 
 TEST(Voxelize, MaskVolumeMatchesTheSurfaceVolume)
 {
-  for (auto shape : {synthetic::cylinder(3.0, 30.0), synthetic::torus_tube(), synthetic::ligament_band()}) {
+  for (auto shape :
+       {synthetic::cylinder(3.0, 30.0), synthetic::torus_tube(), synthetic::ligament_band()}) {
     const double volume = signed_volume(shape.surface);
     const auto v = test::voxelise(std::move(shape), 0.3);
     std::size_t inside = 0;
@@ -24,8 +25,9 @@ TEST(Voxelize, MaskVolumeMatchesTheSurfaceVolume)
 TEST(Voxelize, AgreesWithPointInsideTestsOnARotatedShape)
 {
   const Eigen::Matrix3d rotation =
-    Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  const auto v = test::voxelise(test::transformed(synthetic::torus_tube(), rotation, {1, 2, 3}), 0.5);
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const auto v =
+      test::voxelise(test::transformed(synthetic::torus_tube(), rotation, {1, 2, 3}), 0.5);
   int disagreements = 0;
   for (std::size_t i = 0; i < v.mask.values.size(); i += 7)
     disagreements += (v.mask.values[i] != 0) != v.query.inside(v.mask.point(i));
