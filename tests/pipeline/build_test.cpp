@@ -116,6 +116,16 @@ TEST(Build, SyntheticBandWithCacheReuse)
   EXPECT_GT(summary["stages"]["model"]["figures"]["femur_nodes"].get<int>(), 0);
   EXPECT_GT(summary["stages"]["model"]["figures"]["tibia_nodes"].get<int>(), 0);
 
+  // The model's scene is one the simulator runs: the knee flexion converges at every step.
+  const fs::path simulated = fresh_folder("band_flexion");
+  const CliResult flexion =
+      run_ligsim("simulate " + (out / "scene.toml").string() + " --out " + simulated.string());
+  ASSERT_EQ(flexion.exit_code, 0) << flexion.stderr_text;
+  const nlohmann::json run = read_summary(simulated);
+  EXPECT_TRUE(run["results"]["success"].get<bool>());
+  EXPECT_EQ(run["results"]["steps"].size(), 6u);
+  EXPECT_GT(run["parameters"]["node_sets"]["femur"].get<int>(), 0);
+
   // Nothing changed: every stage is reused.
   ASSERT_EQ(run_ligsim("build " + inputs).exit_code, 0);
   for (const auto& [name, status] : statuses(read_summary(out)))
