@@ -2,6 +2,7 @@
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
+#include "tests/sim/solver/cube_tension.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,20 +12,7 @@ namespace {
 
 struct Cube {
   ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
-  BoundaryConditions conditions;
-
-  Cube()
-  {
-    ConstraintSet bottom;
-    bottom.name = "bottom";
-    bottom.nodes = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
-    conditions.constraints.push_back(bottom);
-    NodalLoad load;
-    load.name = "top";
-    load.nodes = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
-    load.force_per_node_n = Eigen::Vector3d(0, 0, 0.2);
-    conditions.loads.push_back(load);
-  }
+  BoundaryConditions conditions = test::cube_tension(mesh, Eigen::Vector3d(0, 0, 0.2));
 };
 
 FiberField along_z()

@@ -3,7 +3,9 @@
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/static_solver.hpp"
 
+#include "tests/sim/solver/cube_tension.hpp"
 #include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 using namespace ligsim::sim;
@@ -15,22 +17,6 @@ FiberField along_z()
   FiberField fiber(1, 3);
   fiber << 0, 0, 1;
   return fiber;
-}
-
-/// Unit cube, bottom fixed, `per_node_n` on every top node.
-BoundaryConditions tension(const ligsim::TetMesh& mesh, const Eigen::Vector3d& per_node_n)
-{
-  BoundaryConditions conditions;
-  ConstraintSet bottom;
-  bottom.name = "bottom";
-  bottom.nodes = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
-  conditions.constraints.push_back(bottom);
-  NodalLoad load;
-  load.name = "top";
-  load.nodes = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
-  load.force_per_node_n = per_node_n;
-  conditions.loads.push_back(load);
-  return conditions;
 }
 
 struct Solved {
@@ -56,7 +42,7 @@ TEST(StaticSolver, ReactionsBalanceTheLoad)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(4, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = tension(mesh, {0.01, 0.0, 0.2});
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.01, 0.0, 0.2});
   const Solved solved = solve(body, conditions, NewtonSettings{});
   ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   const Eigen::Vector3d applied = 25.0 * Eigen::Vector3d(0.01, 0.0, 0.2);
@@ -69,7 +55,7 @@ TEST(StaticSolver, DirectAndPcgFindTheSameEquilibrium)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 0.3});
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 0.3});
   NewtonSettings settings;
   settings.load_steps = 2;
   const Solved direct = solve(body, conditions, settings);
@@ -115,7 +101,7 @@ TEST(StaticSolver, CutsBackALoadStepThatFails)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 6.0});
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
   NewtonSettings settings;
   settings.load_steps = 1;
   settings.max_iterations = 4; // too few for the full load at once
@@ -129,7 +115,7 @@ TEST(StaticSolver, ReportsFailureWithTheLastGoodState)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = tension(mesh, {0.0, 0.0, 20.0});
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 20.0});
   NewtonSettings settings;
   settings.load_steps = 1;
   settings.max_iterations = 1;
@@ -147,7 +133,7 @@ TEST(StaticSolver, NodesWithoutElementsAreHeldFixed)
   mesh.V.row(mesh.V.rows() - 1) << 5.0, 5.0, 5.0;
   const HyperelasticBody body(mesh, mcl_material(), along_z());
   EXPECT_TRUE(body.unreferenced_nodes().back());
-  const Solved solved = solve(body, tension(mesh, {0, 0, 0.1}), NewtonSettings{});
+  const Solved solved = solve(body, test::cube_tension(mesh, {0, 0, 0.1}), NewtonSettings{});
   ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   EXPECT_EQ(solved.x.tail<3>(), Eigen::Vector3d(5, 5, 5));
 }
@@ -155,7 +141,7 @@ TEST(StaticSolver, NodesWithoutElementsAreHeldFixed)
 TEST(StaticSolver, ConflictingConstraintsAreRejected)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
-  BoundaryConditions conditions = tension(mesh, {0, 0, 0.1});
+  BoundaryConditions conditions = test::cube_tension(mesh, {0, 0, 0.1});
   ConstraintSet again = conditions.constraints[0];
   again.name = "again";
   again.displacement_mm = Eigen::Vector3d(0, 0, 0.1);
