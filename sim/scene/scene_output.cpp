@@ -38,11 +38,12 @@ SceneOutput::SceneOutput(const HyperelasticBody& body, std::filesystem::path dir
   ensure_directory(m_directory);
 }
 
-void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
+vtkSmartPointer<vtkUnstructuredGrid>
+deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std::string& label)
 {
   if (!x.allFinite())
-    fail<SolverError>("step {}: the positions are not finite; nothing written", index);
-  const TetMesh& mesh = m_body.mesh();
+    fail<SolverError>("{}: the positions are not finite; nothing written", label);
+  const TetMesh& mesh = body.mesh();
   const vtkIdType node_count = mesh.V.rows();
   const vtkIdType element_count = mesh.T.rows();
 
@@ -69,7 +70,7 @@ void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
 
   auto energy = make_array("strain_energy_density", 1, element_count);
   auto jacobian = make_array("J", 1, element_count);
-  const bool fibers = m_body.material().has_fibers();
+  const bool fibers = body.material().has_fibers();
   vtkSmartPointer<vtkDoubleArray> stretch;
   vtkSmartPointer<vtkDoubleArray> direction;
   if (fibers) {
@@ -77,17 +78,17 @@ void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
     direction = make_array("fiber_direction", 3, element_count);
   }
   for (vtkIdType e = 0; e < element_count; ++e) {
-    const ElementMeasures measures = m_body.measures(x, e);
+    const ElementMeasures measures = body.measures(x, e);
     if (!std::isfinite(measures.energy_density_mpa) || !(measures.J > 0.0))
-      fail<SolverError>("step {}: element {} is inverted or has a non-finite energy (J = {:.3g}); "
+      fail<SolverError>("{}: element {} is inverted or has a non-finite energy (J = {:.3g}); "
                         "nothing written",
-                        index, e, measures.J);
+                        label, e, measures.J);
     energy->SetValue(e, measures.energy_density_mpa);
     jacobian->SetValue(e, measures.J);
     if (fibers) {
       stretch->SetValue(e, measures.fiber_stretch);
       const TetCorners Q = tet_corners(mesh.T, e, x);
-      const Eigen::Vector3d deformed = (Q.transpose() * m_body.shape(e).D) * m_body.fiber(e);
+      const Eigen::Vector3d deformed = (Q.transpose() * body.shape(e).D) * body.fiber(e);
       const Eigen::Vector3d unit = deformed.normalized();
       for (int a = 0; a < 3; ++a)
         direction->SetComponent(e, a, unit(a));
@@ -99,15 +100,24 @@ void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
     grid->GetCellData()->AddArray(stretch);
     grid->GetCellData()->AddArray(direction);
   }
-  const std::string name = fmt::format("step_{:04d}.vtu", index);
-  write_vtk(grid, m_directory / name);
+  return grid;
+}
+
+void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
+{
+  write(fmt::format("step_{:04d}.vtu", index), time, x);
+}
+
+void SceneOutput::write(const std::string& name, double time, const Eigen::VectorXd& x)
+{
+  write_vtk(deformed_grid(m_body, x, name), m_directory / name);
   m_steps.emplace_back(time, name);
 }
 
-void SceneOutput::finish()
+void SceneOutput::finish(const std::string& pvd)
 {
   if (!m_steps.empty())
-    write_pvd(m_directory / "series.pvd", m_steps);
+    write_pvd(m_directory / pvd, m_steps);
 }
 
 } // namespace ligsim::sim

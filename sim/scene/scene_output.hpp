@@ -5,13 +5,23 @@
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
+#include <vtkSmartPointer.h>
 
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
+class vtkUnstructuredGrid;
+
 namespace ligsim::sim {
+
+/// The body deformed to positions `x` (mm): point data "displacement"; cell data
+/// "strain_energy_density" (MPa), "J", and with fibers "fiber_stretch" (|F a|) and
+/// "fiber_direction" (unit, deformed). Throws SolverError naming the first non-finite position
+/// or inverted element (`label` names the state in the message).
+vtkSmartPointer<vtkUnstructuredGrid>
+deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std::string& label);
 
 class SceneOutput {
 public:
@@ -20,9 +30,11 @@ public:
   /// Writes `<directory>/step_<index>.vtu` for positions `x` (mm) at `time` (load factor or
   /// seconds). Throws SolverError rather than write a non-finite value.
   void write_step(int index, double time, const Eigen::VectorXd& x);
+  /// The same under any file name (relative to the directory).
+  void write(const std::string& name, double time, const Eigen::VectorXd& x);
 
-  /// Writes `<directory>/series.pvd` listing every step written.
-  void finish();
+  /// Writes `<directory>/<pvd>` listing every step written.
+  void finish(const std::string& pvd = "series.pvd");
 
   const std::vector<std::pair<double, std::string>>& written() const { return m_steps; }
 

@@ -123,6 +123,20 @@ std::vector<int> TomlTable::integers(const std::string& key)
   return values;
 }
 
+std::vector<double> TomlTable::numbers(const std::string& key)
+{
+  const toml::array* array = node(key).as_array();
+  if (!array)
+    fail_at(key, "expected an array of numbers");
+  std::vector<double> values;
+  for (const toml::node& item : *array) {
+    if (!item.is_number())
+      fail_at(key, "expected an array of numbers");
+    values.push_back(item.value<double>().value());
+  }
+  return values;
+}
+
 std::optional<TomlTable> TomlTable::table(const std::string& key)
 {
   if (!has(key))

@@ -61,6 +61,12 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
 {
   if (settings.load_steps < 1)
     fail("solver: load_steps must be at least 1, got {}", settings.load_steps);
+  for (std::size_t i = 0; i < settings.load_factors.size(); ++i) {
+    const double t = settings.load_factors[i];
+    const double previous = i == 0 ? 0.0 : settings.load_factors[i - 1];
+    if (!(t >= previous && t <= 1.0) || (i > 0 && t == previous))
+      fail("solver: load factors must increase within [0, 1]; factor {} is {}", i + 1, t);
+  }
   if (settings.max_iterations < 1)
     fail("solver: max_iterations must be at least 1, got {}", settings.max_iterations);
   if (!(settings.residual_tolerance > 0.0))
@@ -79,6 +85,16 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
   m_energy_unit = body.material().parameters().mu_mpa * body.rest_volume();
+}
+
+std::vector<double> StaticSolver::step_targets() const
+{
+  if (!m_settings.load_factors.empty())
+    return m_settings.load_factors;
+  std::vector<double> targets;
+  for (int step = 1; step <= m_settings.load_steps; ++step)
+    targets.push_back(static_cast<double>(step) / m_settings.load_steps);
+  return targets;
 }
 
 Eigen::VectorXd StaticSolver::free_part(const Eigen::VectorXd& full) const
@@ -300,33 +316,38 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     result.failure = "the initial positions are missing or not finite";
     return result;
   }
-  const int steps = m_settings.load_steps;
-  const double nominal = 1.0 / steps;
+  const std::vector<double> targets = step_targets();
+  const int steps = static_cast<int>(targets.size());
   double t = 0.0;
-  double dt = nominal;
+  double carried_dt = 1.0; // the last successful sub-step length, reused by the next step
   for (int step = 1; step <= steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     StepReport report;
     report.step = step;
-    const double t_end = static_cast<double>(step) / steps;
-    while (t < t_end - 1e-14) {
-      const double t_next = std::min(t_end, t + dt);
+    const double t_end = targets[static_cast<std::size_t>(step) - 1];
+    const double nominal = t_end - t;
+    const bool in_place = nominal <= 1e-14; // equilibrium at the current load factor
+    double dt = in_place ? 0.0 : std::min(carried_dt, nominal);
+    for (bool first = true; first || t < t_end - 1e-14; first = false) {
+      const double t_next = in_place ? t_end : std::min(t_end, t + dt);
       const Eigen::VectorXd saved = x;
       m_failure.clear();
       ++report.substeps;
       if (advance(x, t_next, report)) {
         t = t_next;
         dt = std::min(nominal, 2.0 * dt);
+        if (!in_place)
+          carried_dt = dt;
         continue;
       }
       x = saved;
       ++report.cutbacks;
       ++result.cutbacks;
       dt *= 0.5;
-      if (report.cutbacks > m_settings.max_cutbacks) {
+      if (report.cutbacks > m_settings.max_cutbacks || in_place) {
         result.failure = fmt::format("load step {} (load factor {:.4g}) failed after {} "
                                      "cut-backs: {}",
-                                     step, t_next, m_settings.max_cutbacks, m_failure);
+                                     step, t_next, report.cutbacks - 1, m_failure);
         report.wall_s = seconds_since(step_start);
         report.load_factor = t;
         result.steps.push_back(report);

@@ -25,7 +25,10 @@ PsdProjection parse_psd_projection(const std::string& text, const std::string& w
 std::string to_string(PsdProjection projection);
 
 struct NewtonSettings {
-  int load_steps = 10;
+  int load_steps = 10; ///< equal load steps from 0 to 1, unless load_factors is given
+  /// The load factors of the reported steps, increasing, in [0, 1]; a step at the current load
+  /// factor (a leading 0) is solved in place: equilibrium before anything moves. Empty: uniform.
+  std::vector<double> load_factors;
   int max_iterations = 30; ///< per load step
   /// Converged when ||r_free|| <= residual_tolerance * max(||f_ext||, ||reactions||) ...
   double residual_tolerance = 1e-8;
@@ -96,6 +99,8 @@ private:
     double total_energy = 0.0; ///< strain energy minus the work of the external forces
   };
 
+  /// The load factors of the reported steps.
+  std::vector<double> step_targets() const;
   /// Brings the converged state to load factor t1; false (with m_failure set) when it cannot.
   bool advance(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Moves the prescribed DOFs to their targets at t1, the free ones by the linear predictor.

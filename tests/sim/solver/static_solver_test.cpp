@@ -148,3 +148,36 @@ TEST(StaticSolver, ConflictingConstraintsAreRejected)
   conditions.constraints.push_back(again);
   EXPECT_THROW(DofPartition(static_cast<int>(mesh.V.rows()), conditions, {}), ligsim::InputError);
 }
+
+TEST(StaticSolver, ExplicitLoadFactorsReachTheSameEquilibrium)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 0.3});
+  NewtonSettings uniform;
+  uniform.load_steps = 4;
+  NewtonSettings listed;
+  listed.load_factors = {0.0, 0.1, 0.7, 1.0};
+  const Solved a = solve(body, conditions, uniform);
+  const Solved b = solve(body, conditions, listed);
+  ASSERT_TRUE(a.result.converged && b.result.converged) << b.result.failure;
+  ASSERT_EQ(b.result.steps.size(), 4u);
+  // The leading 0 is an equilibrium in place: nothing is loaded, nothing moves.
+  EXPECT_EQ(b.result.steps[0].load_factor, 0.0);
+  EXPECT_NEAR(b.result.steps[0].strain_energy_mj, 0.0, 1e-15);
+  EXPECT_EQ(b.result.steps[2].load_factor, 0.7);
+  EXPECT_LT((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+TEST(StaticSolver, LoadFactorsMustIncreaseWithinZeroAndOne)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 0.1});
+  for (const std::vector<double>& factors :
+       {std::vector<double>{0.5, 0.2}, {0.5, 0.5}, {0.5, 1.5}, {-0.1, 1.0}}) {
+    NewtonSettings settings;
+    settings.load_factors = factors;
+    EXPECT_THROW(StaticSolver(body, conditions, settings), ligsim::InputError);
+  }
+}
