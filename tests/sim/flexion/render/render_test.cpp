@@ -1,5 +1,6 @@
 #include "common/error.hpp"
 #include "sim/flexion/render/ligament_picture.hpp"
+#include "sim/flexion/render/line_plot_picture.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -30,6 +32,7 @@
 
 namespace fs = std::filesystem;
 using ligsim::sim::LigamentPicture;
+using ligsim::sim::LinePlot;
 using ligsim::sim::OffscreenDisplay;
 using ligsim::sim::PictureCamera;
 
@@ -431,6 +434,50 @@ TEST(LigamentPicture, MissingArrayOrBadCameraIsAnInputError)
   EXPECT_THROW(ligsim::sim::render_ligament_png(picture, PictureCamera{}, file),
                ligsim::InputError);
   EXPECT_FALSE(fs::exists(file));
+}
+
+TEST(LinePlot, RightSizeAndNotBlank)
+{
+  OffscreenDisplay display;
+  LinePlot plot;
+  plot.title = "MCL strain energy";
+  plot.x_label = "flexion (deg)";
+  plot.y_label = "strain energy (mJ)";
+  for (int a = 0; a <= 90; a += 15) {
+    plot.x.push_back(a);
+    plot.y.push_back(0.01 * a * a);
+  }
+  plot.width = 400;
+  plot.height = 300;
+  const TestDir test_dir("plot");
+  const fs::path& dir = test_dir.path();
+  const fs::path file = dir / "energy.png";
+  ligsim::sim::render_line_plot_png(plot, file);
+  EXPECT_EQ(file_count(dir), 1u);
+
+  const Png png = read_png(file);
+  ASSERT_EQ(png.width, 400);
+  ASSERT_EQ(png.height, 300);
+  std::set<std::array<int, 3>> colours;
+  int bluish = 0;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const auto c = png.rgb(x, y);
+      colours.insert(c);
+      bluish += (c[2] > c[0] + 60) ? 1 : 0;
+    }
+  EXPECT_GT(colours.size(), 2u);
+  EXPECT_GT(bluish, 200) << "the line is missing";
+  EXPECT_EQ(png.rgb(2, png.height - 3), (std::array<int, 3>{255, 255, 255}));
+}
+
+TEST(LinePlot, MismatchedDataIsAnInputError)
+{
+  LinePlot plot;
+  plot.x = {0.0, 1.0};
+  plot.y = {0.0};
+  const TestDir dir("bad_plot");
+  EXPECT_THROW(ligsim::sim::render_line_plot_png(plot, dir.path() / "p.png"), ligsim::InputError);
 }
 
 TEST(LigamentPicture, TenThousandTetsFullSize)
