@@ -8,8 +8,13 @@ find_package(Boost 1.74 REQUIRED COMPONENTS graph)
 find_package(CGAL REQUIRED)
 find_package(VTK REQUIRED COMPONENTS
   CommonCore CommonDataModel CommonExecutionModel
-  FiltersCore FiltersGeneral
-  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage)
+  FiltersCore FiltersGeneral FiltersGeometry FiltersSources
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage
+  # Pictures (sim/flexion/render): off-screen OpenGL through X, text, charts.
+  RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
+  ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2)
+# Xlib, to check that an X display answers before rendering on it.
+find_package(X11 REQUIRED)
 
 # CHOLMOD (SuiteSparse) is the sparse direct solver: supernodal Cholesky is several
 # times faster than Eigen's simplicial one on 3-D stiffness matrices.
