@@ -20,5 +20,7 @@ void add_simulate_command(CLI::App& app);
 void add_verify_command(CLI::App& app);
 /// `tear`: membrane tearing scenes.
 void add_tear_command(CLI::App& app);
+/// `flexion`: the knee flexion sweep on a built model.
+void add_flexion_command(CLI::App& app);
 
 } // namespace ligsim::cli

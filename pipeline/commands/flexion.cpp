@@ -1,0 +1,229 @@
+#include "pipeline/commands/commands.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "common/resources.hpp"
+#include "common/run_summary.hpp"
+#include "sim/flexion/flexion_config.hpp"
+#include "sim/flexion/flexion_output.hpp"
+#include "sim/flexion/flexion_pictures.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/render/offscreen_display.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ligsim::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct FlexionOptions {
+  fs::path config;
+  fs::path model;
+  fs::path out;
+  std::vector<double> angles;
+  std::string mode;
+  std::vector<double> axis_points;
+  std::vector<double> posterior;
+  std::optional<double> in_situ_strain;
+  std::optional<double> speed;
+  std::optional<double> time_step;
+  bool no_images = false;
+};
+
+nlohmann::json vector_json(const Eigen::Vector3d& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
+
+/// The config file (if any), then the flags over it.
+sim::FlexionSettings settings_from(const FlexionOptions& options)
+{
+  sim::FlexionSettings settings;
+  if (!options.config.empty())
+    sim::read_flexion_config(options.config, settings);
+  if (!options.model.empty())
+    settings.model_dir = options.model;
+  if (settings.model_dir.empty())
+    fail("flexion: no model folder: pass --model DIR (the output folder of `ligsim build`) or "
+         "set `model` in the config");
+  if (!options.angles.empty())
+    settings.angles_deg = options.angles;
+  if (options.mode == "static")
+    settings.mode = sim::FlexionMode::quasi_static;
+  else if (options.mode == "interactive")
+    settings.mode = sim::FlexionMode::interactive;
+  if (!options.axis_points.empty()) {
+    settings.axis.source = sim::AxisSettings::Source::points;
+    settings.axis.first_mm = Eigen::Vector3d(options.axis_points.data());
+    settings.axis.second_mm = Eigen::Vector3d(options.axis_points.data() + 3);
+  }
+  if (!options.posterior.empty()) {
+    settings.axis.source = sim::AxisSettings::Source::condyles;
+    settings.axis.posterior = Eigen::Vector3d(options.posterior.data());
+  }
+  if (options.in_situ_strain)
+    settings.in_situ_strain = *options.in_situ_strain;
+  if (options.speed)
+    settings.interactive.angular_speed_deg_s = *options.speed;
+  if (options.time_step)
+    settings.interactive.time_step_s = *options.time_step;
+  if (options.no_images)
+    settings.images = false;
+  sim::validate(settings);
+  return settings;
+}
+
+void record_parameters(const sim::FlexionSettings& settings, const sim::ResolvedAxis& axis,
+                       RunSummary& summary)
+{
+  nlohmann::json& parameters = summary.parameters();
+  parameters["angles_deg"] = settings.angles_deg;
+  parameters["mode"] = to_string(settings.mode);
+  parameters["axis"] = {{"method", axis.method},
+                        {"point_mm", vector_json(axis.axis.point_mm)},
+                        {"direction", vector_json(axis.axis.direction)},
+                        {"fit", axis.figures}};
+  const sim::MaterialParameters& m = settings.material;
+  parameters["material"] = {{"mu_mpa", m.mu_mpa},
+                            {"k_mpa", m.bulk_modulus_mpa},
+                            {"volumetric", to_string(m.volumetric)},
+                            {"c3_mpa", m.fiber->c3_mpa},
+                            {"c4", m.fiber->c4},
+                            {"c5_mpa", m.fiber->c5_mpa},
+                            {"lambda_star", m.fiber->lambda_star},
+                            {"convention", to_string(m.fiber->convention)}};
+  parameters["in_situ_strain"] = settings.in_situ_strain;
+  parameters["contact"] = "none: the ligament may pass through the bones";
+  if (settings.mode == sim::FlexionMode::quasi_static)
+    parameters["static"] = {{"residual_tolerance", settings.newton.residual_tolerance},
+                            {"max_iterations", settings.newton.max_iterations},
+                            {"max_cutbacks", settings.newton.max_cutbacks},
+                            {"linear_solver", to_string(settings.newton.linear_solver)}};
+  else
+    parameters["interactive"] = {{"angular_speed_deg_s", settings.interactive.angular_speed_deg_s},
+                                 {"time_step_s", settings.interactive.time_step_s},
+                                 {"density_kg_m3", settings.interactive.density_kg_m3},
+                                 {"mass_damping_per_s", settings.interactive.mass_damping_per_s},
+                                 {"linear_solver", to_string(settings.interactive.linear_solver)}};
+}
+
+void run_flexion(const FlexionOptions& options)
+{
+  RunSummary summary("flexion");
+  StageMeter setup_meter;
+  const sim::FlexionSettings settings = settings_from(options);
+  summary.inputs()["model"] = settings.model_dir.string();
+  if (!options.config.empty())
+    summary.inputs()["config"] = options.config.string();
+  const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
+  const sim::ResolvedAxis axis = sim::resolve_flexion_axis(model, settings.axis);
+  record_parameters(settings, axis, summary);
+  const sim::HyperelasticBody body(model.mesh, settings.material,
+                                   sim::prestretched_fibers(model, settings.in_situ_strain));
+  const sim::BoundaryConditions conditions =
+      sim::knee_conditions(model, axis.axis, settings.angles_deg.back());
+  // Before anything is written: a display for the pictures, or the reason there is none.
+  std::optional<sim::OffscreenDisplay> display;
+  if (settings.images)
+    display.emplace();
+  summary.add_stage("setup", setup_meter,
+                    {{"nodes", body.node_count()},
+                     {"tets", body.element_count()},
+                     {"femur_nodes", model.femur_nodes.size()},
+                     {"tibia_nodes", model.tibia_nodes.size()},
+                     {"rest_volume_mm3", body.rest_volume()}});
+
+  ensure_directory(options.out);
+  sim::FlexionOutput output(body, model, axis.axis, options.out);
+  sim::FlexionPictures pictures(body, model, output, axis.axis, settings.image_angles_deg,
+                                options.out);
+  StageMeter sweep_meter;
+  const sim::SweepResult sweep = sim::run_flexion_sweep(
+      body, conditions, settings, [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+        output.write_angle(angle, x);
+        if (settings.images)
+          pictures.keep(angle, x);
+      });
+  output.finish(sweep.angles);
+  nlohmann::json sweep_figures = {{"success", sweep.success},
+                                  {"angles_reached", sweep.angles.size()}};
+  if (settings.mode == sim::FlexionMode::interactive)
+    sweep_figures.update({{"frames", sweep.frames},
+                          {"time_step_s", sweep.time_step_s},
+                          {"frames_per_second", sweep.frames_per_second}});
+  summary.add_stage("sweep", sweep_meter, sweep_figures);
+
+  nlohmann::json& results = summary.results();
+  nlohmann::json entries = nlohmann::json::array();
+  for (const sim::AngleResult& angle : sweep.angles)
+    entries.push_back(sim::angle_json(angle));
+  results["angles"] = entries;
+  results["unrelaxed_prestretch_energy_mj"] = sweep.unrelaxed_energy_mj;
+  results["success"] = sweep.success;
+  if (settings.mode == sim::FlexionMode::interactive)
+    results["frames_per_second"] = sweep.frames_per_second;
+  if (!sweep.success)
+    results["failure"] = sweep.failure;
+
+  std::vector<fs::path> images;
+  if (settings.images) {
+    StageMeter picture_meter;
+    images = pictures.render(sweep.angles);
+    summary.add_stage("pictures", picture_meter, {{"files", images.size()}});
+  }
+  summary.write(options.out);
+  if (!sweep.success)
+    fail<SolverError>("{} (the angles reached are in {})", sweep.failure, options.out.string());
+
+  log_info(fmt::format("table: {}", (options.out / "flexion.csv").string()));
+  for (const fs::path& image : images)
+    log_info(fmt::format("image: {}", image.string()));
+  log_info(fmt::format("ParaView: {}", (options.out / "flexion.pvd").string()));
+}
+
+} // namespace
+
+void add_flexion_command(CLI::App& app)
+{
+  auto options = std::make_shared<FlexionOptions>();
+  auto* command = app.add_subcommand(
+      "flexion", "sweep a built knee model through flexion (tibia fixed, femur turning)");
+  command->add_option("--config", options->config, "flexion config (.toml); flags override it")
+      ->check(CLI::ExistingFile);
+  command->add_option("--model", options->model, "output folder of `ligsim build`");
+  command->add_option("--out", options->out, "output folder")->required();
+  command->add_option("--angles", options->angles, "flexion angles, deg (default 0,15,...,90)")
+      ->delimiter(',');
+  command->add_option("--mode", options->mode, "static (default) or interactive")
+      ->check(CLI::IsMember({"static", "interactive"}));
+  auto* axis = command
+                   ->add_option("--axis", options->axis_points,
+                                "flexion axis through two points x1,y1,z1,x2,y2,z2 (mm)")
+                   ->delimiter(',')
+                   ->expected(6);
+  command
+      ->add_option("--posterior", options->posterior,
+                   "posterior direction x,y,z: fit the axis to the posterior condyles")
+      ->delimiter(',')
+      ->expected(3)
+      ->excludes(axis);
+  command->add_option("--in-situ-strain", options->in_situ_strain,
+                      "fiber pre-strain of the built pose (default 0.029)");
+  command->add_option("--speed", options->speed, "interactive: femur speed, deg/s (default 45)");
+  command->add_option("--time-step", options->time_step,
+                      "interactive: frame time step, s (default 0.01)");
+  command->add_flag("--no-images", options->no_images, "no PNG pictures (no X server needed)");
+  command->callback([options] { run_flexion(*options); });
+}
+
+} // namespace ligsim::cli

@@ -1,0 +1,124 @@
+#include "sim/flexion/flexion_config.hpp"
+
+#include "common/error.hpp"
+#include "sim/scene/toml_reader.hpp"
+
+#include <fstream>
+#include <sstream>
+
+namespace ligsim::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void read_axis(TomlTable& table, AxisSettings& axis)
+{
+  const std::string method =
+      table.text("method", axis.source == AxisSettings::Source::points ? "points" : "condyles");
+  if (method == "points")
+    axis.source = AxisSettings::Source::points;
+  else if (method == "condyles")
+    axis.source = AxisSettings::Source::condyles;
+  else
+    table.fail_at("method", "expected \"condyles\" or \"points\", got \"" + method + "\"");
+  axis.first_mm = table.vector3("first_mm", axis.first_mm);
+  axis.second_mm = table.vector3("second_mm", axis.second_mm);
+  axis.posterior = table.vector3("posterior", axis.posterior);
+  if (axis.source == AxisSettings::Source::points && !table.has("first_mm") &&
+      !table.has("second_mm"))
+    table.fail_at("method", "method \"points\" needs first_mm and second_mm");
+  table.reject_unknown_keys();
+}
+
+void read_material(TomlTable& table, FlexionSettings& settings)
+{
+  MaterialParameters& material = settings.material;
+  FiberParameters& fiber = *material.fiber;
+  material.mu_mpa = table.number("mu_mpa", material.mu_mpa);
+  material.bulk_modulus_mpa = table.number("k_mpa", material.bulk_modulus_mpa);
+  if (table.has("volumetric"))
+    material.volumetric = parse_volumetric_law(table.text("volumetric", ""), table.where());
+  fiber.c3_mpa = table.number("c3_mpa", fiber.c3_mpa);
+  fiber.c4 = table.number("c4", fiber.c4);
+  fiber.c5_mpa = table.number("c5_mpa", fiber.c5_mpa);
+  fiber.lambda_star = table.number("lambda_star", fiber.lambda_star);
+  if (table.has("convention"))
+    fiber.convention = parse_fiber_convention(table.text("convention", ""), table.where());
+  settings.in_situ_strain = table.number("in_situ_strain", settings.in_situ_strain);
+  table.reject_unknown_keys();
+}
+
+void read_static(TomlTable& table, NewtonSettings& newton)
+{
+  newton.residual_tolerance = table.number("residual_tolerance", newton.residual_tolerance);
+  newton.max_iterations = table.integer("max_iterations", newton.max_iterations);
+  newton.max_cutbacks = table.integer("max_cutbacks", newton.max_cutbacks);
+  if (table.has("linear_solver"))
+    newton.linear_solver = parse_linear_solver(table.text("linear_solver", ""), table.where());
+  table.reject_unknown_keys();
+}
+
+void read_interactive(TomlTable& table, InteractiveSettings& interactive)
+{
+  interactive.angular_speed_deg_s =
+      table.number("angular_speed_deg_s", interactive.angular_speed_deg_s);
+  interactive.time_step_s = table.number("time_step_s", interactive.time_step_s);
+  interactive.density_kg_m3 = table.number("density_kg_m3", interactive.density_kg_m3);
+  interactive.mass_damping_per_s =
+      table.number("mass_damping_per_s", interactive.mass_damping_per_s);
+  if (table.has("linear_solver"))
+    interactive.linear_solver = parse_linear_solver(table.text("linear_solver", ""), table.where());
+  table.reject_unknown_keys();
+}
+
+} // namespace
+
+void parse_flexion_config(const std::string& text, const fs::path& base, const std::string& name,
+                          FlexionSettings& settings)
+{
+  toml::table document;
+  try {
+    document = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    fail("{}: line {}: {}", name, e.source().begin.line, e.description());
+  }
+  TomlTable root(document, name);
+  if (root.has("model"))
+    settings.model_dir = base / root.text("model", "");
+  if (root.has("angles_deg"))
+    settings.angles_deg = root.numbers("angles_deg");
+  if (root.has("mode")) {
+    const std::string mode = root.text("mode", "");
+    if (mode == "static")
+      settings.mode = FlexionMode::quasi_static;
+    else if (mode == "interactive")
+      settings.mode = FlexionMode::interactive;
+    else
+      root.fail_at("mode", "expected \"static\" or \"interactive\", got \"" + mode + "\"");
+  }
+  settings.images = root.boolean("images", settings.images);
+  if (root.has("image_angles_deg"))
+    settings.image_angles_deg = root.numbers("image_angles_deg");
+  if (auto axis = root.table("axis"))
+    read_axis(*axis, settings.axis);
+  if (auto material = root.table("material"))
+    read_material(*material, settings);
+  if (auto quasi_static = root.table("static"))
+    read_static(*quasi_static, settings.newton);
+  if (auto interactive = root.table("interactive"))
+    read_interactive(*interactive, settings.interactive);
+  root.reject_unknown_keys();
+}
+
+void read_flexion_config(const fs::path& file, FlexionSettings& settings)
+{
+  std::ifstream in(file);
+  if (!in)
+    fail("cannot open flexion config {}", file.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  parse_flexion_config(text.str(), file.parent_path(), file.string(), settings);
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,20 @@
+#pragma once
+/// @brief The TOML file of a flexion sweep (every key in README.md, section "Knee flexion").
+
+#include "sim/flexion/flexion_settings.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace ligsim::sim {
+
+/// Reads `file` over `settings` (keys not in the file keep their value); `model` is relative to
+/// the file's folder. Throws InputError naming the file, table and key of the first problem,
+/// unknown keys included.
+void read_flexion_config(const std::filesystem::path& file, FlexionSettings& settings);
+
+/// The same from TOML text; `base` resolves relative paths, `name` labels errors.
+void parse_flexion_config(const std::string& text, const std::filesystem::path& base,
+                          const std::string& name, FlexionSettings& settings);
+
+} // namespace ligsim::sim

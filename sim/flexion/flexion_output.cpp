@@ -1,0 +1,123 @@
+#include "sim/flexion/flexion_output.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/svg_plot.hpp"
+#include "common/vtk_files.hpp"
+
+#include <fmt/format.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+
+namespace ligsim::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json vector_json(const Eigen::Vector3d& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
+
+} // namespace
+
+std::string angle_label(double angle_deg)
+{
+  if (std::abs(angle_deg - std::round(angle_deg)) < 1e-9)
+    return fmt::format("{}", static_cast<long>(std::lround(angle_deg)));
+  return fmt::format("{:g}", angle_deg);
+}
+
+nlohmann::json angle_json(const AngleResult& angle)
+{
+  nlohmann::json entry = {{"angle_deg", angle.angle_deg},
+                          {"converged", angle.converged},
+                          {"strain_energy_mj", angle.strain_energy_mj},
+                          {"max_fiber_stretch", angle.max_fiber_stretch},
+                          {"mean_fiber_stretch", angle.mean_fiber_stretch},
+                          {"femur_force_n", vector_json(angle.femur_force_n)},
+                          {"femur_force_magnitude_n", angle.femur_force_n.norm()},
+                          {"tibia_force_n", vector_json(angle.tibia_force_n)},
+                          {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
+                          {"newton_iterations", angle.newton_iterations},
+                          {"substeps", angle.substeps},
+                          {"relative_residual", angle.relative_residual},
+                          {"min_j", angle.min_j},
+                          {"wall_s", angle.wall_s}};
+  if (angle.frame >= 0)
+    entry["frame"] = angle.frame;
+  return entry;
+}
+
+FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& model,
+                             const FlexionAxis& axis, fs::path directory)
+    : m_body(body)
+    , m_model(model)
+    , m_axis(axis)
+    , m_directory(std::move(directory))
+    , m_ligament(body, m_directory)
+{
+  write_vtk(m_model.tibia, m_directory / "tibia.vtp");
+}
+
+vtkSmartPointer<vtkPolyData> FlexionOutput::turned_femur(double angle_deg) const
+{
+  RigidMotion motion;
+  motion.axis = m_axis.direction;
+  motion.point_mm = m_axis.point_mm;
+  motion.angle_rad = angle_deg * M_PI / 180.0;
+  auto femur = vtkSmartPointer<vtkPolyData>::New();
+  femur->DeepCopy(m_model.femur);
+  vtkPoints* points = femur->GetPoints();
+  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p) {
+    double xyz[3];
+    points->GetPoint(p, xyz);
+    const Eigen::Vector3d turned = motion.apply(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), 1.0);
+    points->SetPoint(p, turned.x(), turned.y(), turned.z());
+  }
+  return femur;
+}
+
+void FlexionOutput::write_angle(const AngleResult& angle, const Eigen::VectorXd& x)
+{
+  const std::string label = angle_label(angle.angle_deg);
+  const std::string ligament = "ligament_" + label + ".vtu";
+  const std::string femur = "femur_" + label + ".vtp";
+  m_ligament.write(ligament, angle.angle_deg, x);
+  write_vtk(turned_femur(angle.angle_deg), m_directory / femur);
+  m_series.push_back({angle.angle_deg, 0, ligament});
+  m_series.push_back({angle.angle_deg, 1, femur});
+  m_series.push_back({angle.angle_deg, 2, "tibia.vtp"});
+}
+
+void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
+{
+  if (!m_series.empty())
+    write_pvd(m_directory / "flexion.pvd", m_series);
+  std::string csv = "angle_deg,strain_energy_mj,converged,max_fiber_stretch,mean_fiber_stretch,"
+                    "femur_force_n,tibia_force_n,newton_iterations,substeps,relative_residual,"
+                    "min_j,wall_s\n";
+  for (const AngleResult& a : angles)
+    csv += fmt::format("{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.3g},{:.6g},{:.4f}\n",
+                       a.angle_deg, a.strain_energy_mj, a.converged ? 1 : 0, a.max_fiber_stretch,
+                       a.mean_fiber_stretch, a.femur_force_n.norm(), a.tibia_force_n.norm(),
+                       a.newton_iterations, a.substeps, a.relative_residual, a.min_j, a.wall_s);
+  write_text_atomically(m_directory / "flexion.csv", csv);
+
+  PlotSpec plot;
+  plot.title = "Strain energy of the ligament across flexion";
+  plot.x_label = "flexion angle (deg)";
+  plot.y_label = "strain energy (mJ)";
+  PlotSeries series;
+  series.name = "strain energy";
+  for (const AngleResult& a : angles) {
+    series.x.push_back(a.angle_deg);
+    series.y.push_back(a.strain_energy_mj);
+  }
+  plot.series.push_back(series);
+  write_text_atomically(m_directory / "strain_energy.svg", svg_line_plot(plot));
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,67 @@
+#pragma once
+/// @brief What a knee flexion sweep does: the angles, the flexion axis, the material and
+/// in-situ strain, quasi-static or interactive, and which pictures to draw (README, section
+/// "Knee flexion").
+
+#include "sim/material/material_parameters.hpp"
+#include "sim/solver/linear_solver.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+enum class FlexionMode {
+  quasi_static, ///< equilibrium at each angle, continuing from the previous one
+  interactive,  ///< implicit Euler frames while the femur turns at a constant angular speed
+};
+
+/// Where the flexion axis comes from.
+struct AxisSettings {
+  enum class Source {
+    condyles, ///< a cylinder fitted to the femur's posterior condyles (needs `posterior`)
+    points,   ///< the line from `first_mm` to `second_mm`; positive angles turn right-handed
+  };
+  Source source = Source::condyles;
+  Eigen::Vector3d first_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d second_mm = Eigen::Vector3d::Zero();
+  /// The posterior direction in the data's frame (zero: not given). It fixes the sign of the
+  /// fitted axis, so that positive angles flex the knee rather than hyperextend it.
+  Eigen::Vector3d posterior = Eigen::Vector3d::Zero();
+};
+
+struct InteractiveSettings {
+  double angular_speed_deg_s = 45.0;
+  double time_step_s = 0.01;
+  double density_kg_m3 = 1100.0;
+  double mass_damping_per_s = 10.0; ///< Rayleigh alpha
+  LinearSolverKind linear_solver = LinearSolverKind::direct;
+};
+
+struct FlexionSettings {
+  std::filesystem::path model_dir; ///< the output folder of `ligsim build`
+  std::vector<double> angles_deg = {0, 15, 30, 45, 60, 75, 90};
+  FlexionMode mode = FlexionMode::quasi_static;
+  AxisSettings axis;
+  MaterialParameters material = mcl_material();
+  /// Fiber pre-stretch of the reference state, sec. 2.7: |a| = 1 + in_situ_strain. It
+  /// replaces the strain the model was built with.
+  double in_situ_strain = 0.029;
+  NewtonSettings newton;
+  InteractiveSettings interactive;
+  bool images = true;
+  /// The angles drawn as PNG (those of them in the sweep).
+  std::vector<double> image_angles_deg = {0, 45, 90};
+};
+
+/// Throws InputError naming the first setting that cannot work (empty or unordered angles,
+/// a zero-length axis, a non-positive speed or time step, a bad material).
+void validate(const FlexionSettings& settings);
+
+std::string to_string(FlexionMode mode);
+
+} // namespace ligsim::sim

@@ -1,0 +1,79 @@
+#pragma once
+/// @brief The knee flexion sweep on a built model (ligament paper, sec. 4.2 and 5.2): the tibia
+/// is fixed, the femur turns about the flexion axis and carries its attachment nodes rigidly;
+/// the ligament, pre-stretched along its fibers, follows in equilibrium (quasi-static) or by
+/// implicit Euler frames (interactive).
+
+#include "sim/flexion/axis/condyle_axis.hpp"
+#include "sim/flexion/flexion_settings.hpp"
+#include "sim/flexion/knee_model.hpp"
+#include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+/// The flexion axis a sweep uses and how it was found.
+struct ResolvedAxis {
+  FlexionAxis axis;
+  std::string method;
+  nlohmann::json figures; ///< the fit's radius and residual, or the given points
+};
+
+/// The axis from two points, or fitted to the femur's posterior condyles (InputError when the
+/// points coincide, or the posterior direction is missing for a fit).
+ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& settings);
+
+/// Fiber vectors with the in-situ pre-stretch: unit direction times (1 + in_situ_strain).
+FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain);
+
+/// Constraint set "tibia" held fixed, set "femur" turned about `axis` by `last_angle_deg` at load
+/// factor 1.
+BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& axis,
+                                   double last_angle_deg);
+
+/// The state at one angle of the sweep.
+struct AngleResult {
+  double angle_deg = 0.0;
+  bool converged = false;
+  double strain_energy_mj = 0.0;
+  double max_fiber_stretch = 0.0;  ///< |F a|, with the in-situ pre-stretch
+  double mean_fiber_stretch = 0.0; ///< volume-weighted
+  Eigen::Vector3d femur_force_n =
+      Eigen::Vector3d::Zero(); ///< what the femur exerts on the ligament
+  Eigen::Vector3d tibia_force_n = Eigen::Vector3d::Zero();
+  int newton_iterations = 0; ///< quasi-static: Newton iterations; interactive: linear solves
+  int substeps = 0;
+  double relative_residual = 0.0;
+  double min_j = 1.0;
+  double wall_s = 0.0; ///< since the previous angle
+  int frame = -1;      ///< interactive: the frame that reached this angle
+};
+
+struct SweepResult {
+  bool success = false;
+  std::string failure;
+  std::vector<AngleResult> angles;
+  double unrelaxed_energy_mj = 0.0; ///< the pre-stretched model before any equilibrium
+  double wall_s = 0.0;
+  // Interactive mode only.
+  int frames = 0;
+  double time_step_s = 0.0;
+  double frames_per_second = 0.0; ///< frames over the time of the frames alone
+};
+
+/// Called for each angle reached, with the positions (flat, mm).
+using AngleCallback = std::function<void(const AngleResult&, const Eigen::VectorXd& x)>;
+
+/// Sweeps the angles of `settings` (in `conditions`, load factor = angle / last angle). Never
+/// throws on divergence: the result says where it stopped.
+SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
+                              const FlexionSettings& settings, const AngleCallback& on_angle);
+
+} // namespace ligsim::sim

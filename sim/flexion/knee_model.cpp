@@ -1,0 +1,118 @@
+#include "sim/flexion/knee_model.hpp"
+
+#include "common/error.hpp"
+#include "common/vtk_files.hpp"
+#include "sim/scene/vtu_mesh.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkIdList.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+
+namespace ligsim::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Nodes whose flag in `array` of model.vtu is set.
+std::vector<int> flagged_nodes(const VtuMesh& vtu, const fs::path& file, const std::string& array,
+                               const std::string& bone)
+{
+  const auto found = vtu.point_data.find(array);
+  if (found == vtu.point_data.end())
+    fail("{}: no point data '{}': the model has no {} attachment set (was it built with "
+         "`ligsim build`?)",
+         file.string(), array, bone);
+  std::vector<int> nodes;
+  for (Eigen::Index n = 0; n < found->second.rows(); ++n)
+    if (found->second(n, 0) != 0.0)
+      nodes.push_back(static_cast<int>(n));
+  if (nodes.empty())
+    fail("{}: the {} attachment set '{}' is empty: no node is attached to the {}", file.string(),
+         bone, array, bone);
+  return nodes;
+}
+
+vtkSmartPointer<vtkPolyData> bone_surface(const fs::path& dir, const std::string& name,
+                                          const std::string& bone)
+{
+  const fs::path file = dir / name;
+  if (!fs::exists(file))
+    fail("{}: the model has no {} surface: give the {} to `ligsim build` (--{} or [input] {})",
+         file.string(), bone, bone, bone, bone);
+  auto surface = read_vtp(file);
+  triangle_surface(surface, file.string()); // validates
+  return surface;
+}
+
+} // namespace
+
+TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what)
+{
+  TriangleSurface result;
+  const vtkIdType points = surface->GetNumberOfPoints();
+  const vtkIdType polygons = surface->GetNumberOfPolys();
+  if (points == 0 || polygons == 0)
+    fail("{}: the surface has no points or no triangles", what);
+  result.V.resize(points, 3);
+  for (vtkIdType p = 0; p < points; ++p) {
+    double xyz[3];
+    surface->GetPoint(p, xyz);
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      fail("{}: point {} is not finite", what, p);
+    result.V.row(p) << xyz[0], xyz[1], xyz[2];
+  }
+  result.F.resize(polygons, 3);
+  auto ids = vtkSmartPointer<vtkIdList>::New();
+  vtkCellArray* cells = surface->GetPolys();
+  cells->InitTraversal();
+  for (vtkIdType c = 0; cells->GetNextCell(ids); ++c) {
+    if (ids->GetNumberOfIds() != 3)
+      fail("{}: polygon {} has {} corners, not 3", what, c, ids->GetNumberOfIds());
+    for (int i = 0; i < 3; ++i)
+      result.F(c, i) = static_cast<int>(ids->GetId(i));
+  }
+  return result;
+}
+
+KneeModel load_knee_model(const fs::path& dir)
+{
+  if (!fs::is_directory(dir))
+    fail("model folder {} does not exist: build the model first (`ligsim build --out {}`)",
+         dir.string(), dir.string());
+  const fs::path file = dir / "model.vtu";
+  if (!fs::exists(file))
+    fail("{}: no model in this folder: run `ligsim build` (or its `model` stage) on it first",
+         file.string());
+  VtuMesh vtu = read_vtu_mesh(file);
+  KneeModel model;
+  model.mesh = std::move(vtu.mesh);
+
+  const auto fibers = vtu.cell_data.find("fiber");
+  if (fibers == vtu.cell_data.end() || fibers->second.cols() != 3)
+    fail("{}: no 3-component cell data 'fiber' (the per-tet fiber directions)", file.string());
+  model.fiber_directions.resize(fibers->second.rows(), 3);
+  for (Eigen::Index e = 0; e < fibers->second.rows(); ++e) {
+    const Eigen::Vector3d a = fibers->second.row(e).transpose();
+    if (!a.allFinite() || a.norm() < 1e-9)
+      fail("{}: the fiber of tet {} is zero or not finite", file.string(), e);
+    model.fiber_directions.row(e) = a.normalized().transpose();
+  }
+
+  model.femur_nodes = flagged_nodes(vtu, file, "femur_attached", "femur");
+  model.tibia_nodes = flagged_nodes(vtu, file, "tibia_attached", "tibia");
+  std::vector<bool> on_femur(static_cast<std::size_t>(model.mesh.V.rows()), false);
+  for (int n : model.femur_nodes)
+    on_femur[static_cast<std::size_t>(n)] = true;
+  for (int n : model.tibia_nodes)
+    if (on_femur[static_cast<std::size_t>(n)])
+      fail("{}: node {} is attached to both the femur and the tibia", file.string(), n);
+
+  model.femur = bone_surface(dir, "femur.vtp", "femur");
+  model.tibia = bone_surface(dir, "tibia.vtp", "tibia");
+  return model;
+}
+
+} // namespace ligsim::sim

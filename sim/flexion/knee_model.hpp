@@ -1,0 +1,36 @@
+#pragma once
+/// @brief A built knee model as `ligsim build` leaves it in its output folder: the ligament's
+/// tets with per-tet fiber directions and attachment flags (model.vtu), the femur and tibia
+/// surfaces (femur.vtp, tibia.vtp).
+
+#include "common/mesh.hpp"
+
+#include <Eigen/Core>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct KneeModel {
+  TetMesh mesh;
+  Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
+  std::vector<int> femur_nodes;      ///< move rigidly with the femur
+  std::vector<int> tibia_nodes;      ///< stay with the (fixed) tibia
+  vtkSmartPointer<vtkPolyData> femur;
+  vtkSmartPointer<vtkPolyData> tibia;
+};
+
+/// Reads the model folder. Throws InputError naming the file and what is missing: the folder,
+/// model.vtu, its "fiber" cell array or attachment flags, an empty or overlapping attachment
+/// set, a bone surface, a fiber of zero length.
+KneeModel load_knee_model(const std::filesystem::path& dir);
+
+/// The triangles of a bone surface (polygons split into triangles' fans are not expected: the
+/// pipeline writes triangles only). Throws InputError naming `what` for a non-triangle cell.
+TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what);
+
+} // namespace ligsim::sim

@@ -1,0 +1,194 @@
+/// `ligsim flexion` end to end: on the synthetic band (every output, pictures included, and the
+/// bad inputs a user can give) and on the real MCL with the shipped config.
+
+#include "common/vtk_files.hpp"
+#include "tests/pipeline/cli_runner.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <vtkCellData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace ligsim;
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json read_json(const fs::path& file)
+{
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+std::vector<std::string> lines(const fs::path& file)
+{
+  std::ifstream in(file);
+  std::vector<std::string> result;
+  for (std::string line; std::getline(in, line);)
+    result.push_back(line);
+  return result;
+}
+
+/// The band model, built once per test process (ctest runs each test in its own process, in
+/// parallel: the folder carries the process id).
+const fs::path& band_model()
+{
+  static const fs::path model = [] {
+    const std::string pid = std::to_string(::getpid());
+    const fs::path shape = fresh_folder("flexion_band_shape_" + pid);
+    const fs::path out = fresh_folder("flexion_band_model_" + pid);
+    EXPECT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+    const CliResult built =
+        run_ligsim("build --surface " + (shape / "surface.stl").string() + " --femur " +
+                   (shape / "femur.stl").string() + " --tibia " + (shape / "tibia.stl").string() +
+                   " --voxel 0.4 --out " + out.string());
+    EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
+    return out;
+  }();
+  return model;
+}
+
+/// "--axis" through the point and along the direction the model stage chose for the band.
+std::string band_axis()
+{
+  const nlohmann::json axis =
+      read_json(band_model() / "summary.json")["stages"]["model"]["figures"]["flexion_axis"];
+  std::ostringstream text;
+  text << "--axis ";
+  for (int i = 0; i < 3; ++i)
+    text << axis["point_mm"][i].get<double>() << ",";
+  for (int i = 0; i < 3; ++i)
+    text << axis["point_mm"][i].get<double>() + axis["direction"][i].get<double>()
+         << (i < 2 ? "," : "");
+  return text.str();
+}
+
+/// Runs flexion on the band expecting failure: one error line naming `expected`, and no output
+/// folder.
+void expect_rejected(const std::string& arguments, const std::string& expected)
+{
+  const fs::path out = fresh_folder("flexion_band_rejected");
+  const CliResult result = run_ligsim("flexion --out " + out.string() + " " + arguments);
+  EXPECT_NE(result.exit_code, 0) << arguments;
+  EXPECT_NE(result.stderr_text.find(expected), std::string::npos) << result.stderr_text;
+  EXPECT_EQ(std::count(result.stderr_text.begin(), result.stderr_text.end(), '\n'), 1)
+      << result.stderr_text;
+  EXPECT_FALSE(fs::exists(out)) << arguments;
+}
+
+} // namespace
+
+TEST(FlexionCli, BandSweepWritesEveryOutput)
+{
+  const fs::path out = fresh_folder("flexion_band");
+  const CliResult result = run_ligsim("flexion --model " + band_model().string() + " " +
+                                      band_axis() + " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  // The closing lines say where the table and the pictures are.
+  EXPECT_NE(result.stderr_text.find("flexion.csv"), std::string::npos);
+  EXPECT_NE(result.stderr_text.find("ligament_45.png"), std::string::npos);
+
+  const std::vector<std::string> table = lines(out / "flexion.csv");
+  ASSERT_EQ(table.size(), 8u); // header and 0, 15, ..., 90
+  for (const char* column : {"angle_deg", "strain_energy_mj", "converged", "max_fiber_stretch",
+                             "femur_force_n", "tibia_force_n", "newton_iterations", "wall_s"})
+    EXPECT_NE(table[0].find(column), std::string::npos) << column;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json& angles = summary["results"]["angles"];
+  ASSERT_EQ(angles.size(), 7u);
+  for (const nlohmann::json& angle : angles) {
+    EXPECT_TRUE(angle["converged"].get<bool>());
+    EXPECT_GT(angle["newton_iterations"].get<int>(), 0);
+    const std::string label = std::to_string(angle["angle_deg"].get<int>());
+    const auto ligament = read_vtu(out / ("ligament_" + label + ".vtu"));
+    for (const char* array : {"strain_energy_density", "fiber_stretch", "fiber_direction"})
+      EXPECT_NE(ligament->GetCellData()->GetArray(array), nullptr) << array;
+    EXPECT_NE(ligament->GetPointData()->GetArray("displacement"), nullptr);
+    EXPECT_GT(read_vtp(out / ("femur_" + label + ".vtp"))->GetNumberOfPoints(), 0);
+  }
+  EXPECT_LT(angles[0]["strain_energy_mj"].get<double>(),
+            angles[6]["strain_energy_mj"].get<double>());
+  EXPECT_GT(read_vtp(out / "tibia.vtp")->GetNumberOfPoints(), 0);
+  EXPECT_TRUE(fs::exists(out / "flexion.pvd"));
+  EXPECT_TRUE(fs::exists(out / "strain_energy.svg"));
+  for (const char* picture :
+       {"ligament_0.png", "ligament_45.png", "ligament_90.png", "strain_energy.png"})
+    EXPECT_GT(fs::file_size(out / picture), 10000u) << picture;
+}
+
+TEST(FlexionCli, InteractiveModeReportsFramesPerSecond)
+{
+  const fs::path out = fresh_folder("flexion_band_interactive");
+  const CliResult result = run_ligsim(
+      "flexion --model " + band_model().string() + " " + band_axis() +
+      " --mode interactive --angles 0,45,90 --speed 90 --no-images --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_EQ(summary["results"]["angles"].size(), 3u);
+  EXPECT_EQ(summary["stages"]["sweep"]["frames"].get<int>(), 100);
+  EXPECT_GT(summary["results"]["frames_per_second"].get<double>(), 0.0);
+  EXPECT_FALSE(fs::exists(out / "ligament_45.png"));
+}
+
+TEST(FlexionCli, BadInputsAreRejectedBeforeAnythingIsWritten)
+{
+  const std::string model = "--model " + band_model().string();
+  expect_rejected("--model /nonexistent/model " + band_axis(), "does not exist");
+  expect_rejected(model + " --axis 1,2,3,1,2,3", "zero length");
+  expect_rejected(model + " " + band_axis() + " --angles 0,45,30", "increase");
+  expect_rejected(model, "posterior direction"); // no axis and nothing to fit it with
+
+  const fs::path config = fresh_folder("flexion_empty_angles.toml");
+  std::ofstream(config) << "angles_deg = []\n";
+  expect_rejected(model + " " + band_axis() + " --config " + config.string(), "empty");
+
+  // A model folder whose bone is missing.
+  const fs::path boneless = fresh_folder("flexion_boneless_model");
+  fs::copy(band_model(), boneless, fs::copy_options::recursive);
+  fs::remove(boneless / "tibia.vtp");
+  expect_rejected("--model " + boneless.string() + " " + band_axis(), "tibia.vtp");
+}
+
+TEST(FlexionCli, RealMclSweepsToNinetyDegrees)
+{
+  const fs::path model = fresh_folder("flexion_mcl_model");
+  const CliResult built =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
+                 " --out " + model.string());
+  ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
+  const fs::path out = fresh_folder("flexion_mcl");
+  const CliResult result =
+      run_ligsim("flexion --config " + source_path("data/vhf-right-knee/flexion.toml").string() +
+                 " --model " + model.string() + " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json& angles = summary["results"]["angles"];
+  ASSERT_EQ(angles.size(), 7u);
+  for (const nlohmann::json& angle : angles)
+    EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();
+  // At 0 degrees the pre-stretched MCL is in equilibrium: what the femur and the tibia exert
+  // cancels, and relaxing lowered the energy of the imposed pre-stretch.
+  const nlohmann::json& rest = angles[0];
+  double imbalance = 0.0;
+  for (int i = 0; i < 3; ++i)
+    imbalance += std::pow(
+        rest["femur_force_n"][i].get<double>() + rest["tibia_force_n"][i].get<double>(), 2);
+  EXPECT_LT(std::sqrt(imbalance), 1e-6 * rest["femur_force_magnitude_n"].get<double>());
+  EXPECT_GT(rest["mean_fiber_stretch"].get<double>(), 1.0);
+  EXPECT_LT(rest["strain_energy_mj"].get<double>(),
+            summary["results"]["unrelaxed_prestretch_energy_mj"].get<double>());
+  // The fitted axis is mediolateral (+x is lateral in this data set: see its README).
+  const nlohmann::json& axis = summary["parameters"]["axis"];
+  EXPECT_GT(axis["direction"][0].get<double>(), 0.95);
+  for (const char* picture : {"ligament_0.png", "ligament_45.png", "ligament_90.png"})
+    EXPECT_TRUE(fs::exists(out / picture)) << picture;
+}

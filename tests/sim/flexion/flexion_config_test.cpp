@@ -1,0 +1,62 @@
+/// The flexion config file: every key read, flags of a missing file kept, errors located.
+
+#include "common/error.hpp"
+#include "sim/flexion/flexion_config.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ligsim::sim;
+
+TEST(FlexionConfig, ReadsEveryTable)
+{
+  FlexionSettings settings;
+  parse_flexion_config(R"(
+model = "out/mcl"
+angles_deg = [0, 30, 60.5]
+mode = "interactive"
+images = false
+image_angles_deg = [30]
+[axis]
+method = "points"
+first_mm = [0, 0, 0]
+second_mm = [1, 0, 0]
+[material]
+mu_mpa = 1.5
+c5_mpa = 100
+in_situ_strain = 0.01
+[static]
+residual_tolerance = 1e-6
+[interactive]
+angular_speed_deg_s = 90
+time_step_s = 0.02
+)",
+                       "/data", "flexion.toml", settings);
+  EXPECT_EQ(settings.model_dir, "/data/out/mcl");
+  EXPECT_EQ(settings.angles_deg, (std::vector<double>{0, 30, 60.5}));
+  EXPECT_EQ(settings.mode, FlexionMode::interactive);
+  EXPECT_FALSE(settings.images);
+  EXPECT_EQ(settings.axis.source, AxisSettings::Source::points);
+  EXPECT_EQ(settings.axis.second_mm, Eigen::Vector3d::UnitX());
+  EXPECT_EQ(settings.material.mu_mpa, 1.5);
+  EXPECT_EQ(settings.material.fiber->c5_mpa, 100.0);
+  EXPECT_EQ(settings.material.fiber->c4, 61.44); // untouched: the paper's value
+  EXPECT_EQ(settings.in_situ_strain, 0.01);
+  EXPECT_EQ(settings.newton.residual_tolerance, 1e-6);
+  EXPECT_EQ(settings.interactive.angular_speed_deg_s, 90.0);
+  EXPECT_NO_THROW(validate(settings));
+}
+
+TEST(FlexionConfig, ErrorsNameTheKey)
+{
+  FlexionSettings settings;
+  try {
+    parse_flexion_config("[axis]\nposterior = [0, 1, 0]\nposterio = 1\n", "/", "f.toml", settings);
+    FAIL() << "an unknown key was accepted";
+  } catch (const ligsim::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("posterio"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse_flexion_config("mode = \"fast\"\n", "/", "f.toml", settings),
+               ligsim::InputError);
+  EXPECT_THROW(parse_flexion_config("angles_deg = [0, \"x\"]\n", "/", "f.toml", settings),
+               ligsim::InputError);
+}
