@@ -3,9 +3,6 @@
 #include "common/error.hpp"
 #include "sim/scene/toml_reader.hpp"
 
-#include <fstream>
-#include <sstream>
-
 namespace ligsim::sim {
 
 namespace fs = std::filesystem;
@@ -77,12 +74,7 @@ void read_interactive(TomlTable& table, InteractiveSettings& interactive)
 void parse_flexion_config(const std::string& text, const fs::path& base, const std::string& name,
                           FlexionSettings& settings)
 {
-  toml::table document;
-  try {
-    document = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    fail("{}: line {}: {}", name, e.source().begin.line, e.description());
-  }
+  const toml::table document = parse_toml(text, name);
   TomlTable root(document, name);
   if (root.has("model"))
     settings.model_dir = base / root.text("model", "");
@@ -113,12 +105,8 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
 
 void read_flexion_config(const fs::path& file, FlexionSettings& settings)
 {
-  std::ifstream in(file);
-  if (!in)
-    fail("cannot open flexion config {}", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  parse_flexion_config(text.str(), file.parent_path(), file.string(), settings);
+  parse_flexion_config(read_text_file(file, "flexion config"), file.parent_path(), file.string(),
+                       settings);
 }
 
 } // namespace ligsim::sim

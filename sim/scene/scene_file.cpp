@@ -8,8 +8,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace ligsim::sim {
 
@@ -305,12 +303,7 @@ void read_dynamics(TomlTable& table, DynamicsSettings& dynamics)
 
 Scene parse_scene(const std::string& text, const fs::path& base, const std::string& name)
 {
-  toml::table document;
-  try {
-    document = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    fail("{}: line {}: {}", name, e.source().begin.line, e.description());
-  }
+  const toml::table document = parse_toml(text, name);
   TomlTable root(document, name);
   Scene scene;
   root.text("title", "");
@@ -361,12 +354,7 @@ Scene parse_scene(const std::string& text, const fs::path& base, const std::stri
 
 Scene load_scene(const fs::path& file)
 {
-  std::ifstream in(file);
-  if (!in)
-    fail("cannot open scene file {}", file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  Scene scene = parse_scene(text.str(), file.parent_path(), file.string());
+  Scene scene = parse_scene(read_text_file(file, "scene file"), file.parent_path(), file.string());
   scene.file = file;
   return scene;
 }

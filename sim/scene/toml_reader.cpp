@@ -3,8 +3,29 @@
 #include "common/error.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 namespace ligsim::sim {
+
+toml::table parse_toml(const std::string& text, const std::string& name)
+{
+  try {
+    return toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    fail("{}: line {}: {}", name, e.source().begin.line, e.description());
+  }
+}
+
+std::string read_text_file(const std::filesystem::path& file, const std::string& what)
+{
+  std::ifstream in(file);
+  if (!in)
+    fail("cannot open {} {}", what, file.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 TomlTable::TomlTable(const toml::table& table, std::string where)
     : m_table(&table)

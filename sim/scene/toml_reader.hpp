@@ -5,12 +5,19 @@
 #include <Eigen/Core>
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 namespace ligsim::sim {
+
+/// Parses TOML text; a syntax error is an InputError "name: line N: problem".
+toml::table parse_toml(const std::string& text, const std::string& name);
+
+/// The whole text of `file`; InputError "cannot open <what> <file>" when it cannot be read.
+std::string read_text_file(const std::filesystem::path& file, const std::string& what);
 
 class TomlTable {
 public:
