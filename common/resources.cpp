@@ -29,6 +29,11 @@ void reset_peak_rss()
     clear << "5";
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 StageMeter::StageMeter()
     : m_start(std::chrono::steady_clock::now())
 {

@@ -5,6 +5,9 @@
 
 namespace ligsim {
 
+/// Wall seconds since `start` (steady clock).
+double seconds_since(std::chrono::steady_clock::time_point start);
+
 /// Peak resident set size of this process since start or since the last reset, MiB.
 double peak_rss_mib();
 

@@ -5,6 +5,11 @@
 
 namespace ligsim {
 
+nlohmann::json json_vector3(const Eigen::Vector3d& v)
+{
+  return {v.x(), v.y(), v.z()};
+}
+
 RunSummary::RunSummary(std::string job)
 {
   m_json["job"] = std::move(job);

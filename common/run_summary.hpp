@@ -1,12 +1,16 @@
 #pragma once
 /// @brief summary.json: what a job read, with which parameters, what each stage cost and produced.
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <string>
 
 namespace ligsim {
+
+/// [x, y, z] for summary.json.
+nlohmann::json json_vector3(const Eigen::Vector3d& v);
 
 class StageMeter;
 

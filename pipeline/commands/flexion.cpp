@@ -40,11 +40,6 @@ struct FlexionOptions {
   bool no_images = false;
 };
 
-nlohmann::json vector_json(const Eigen::Vector3d& v)
-{
-  return {v.x(), v.y(), v.z()};
-}
-
 /// The config file (if any), then the flags over it.
 sim::FlexionSettings settings_from(const FlexionOptions& options)
 {
@@ -90,8 +85,8 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::Resolved
   parameters["angles_deg"] = settings.angles_deg;
   parameters["mode"] = to_string(settings.mode);
   parameters["axis"] = {{"method", axis.method},
-                        {"point_mm", vector_json(axis.axis.point_mm)},
-                        {"direction", vector_json(axis.axis.direction)},
+                        {"point_mm", json_vector3(axis.axis.point_mm)},
+                        {"direction", json_vector3(axis.axis.direction)},
                         {"fit", axis.figures}};
   const sim::MaterialParameters& m = settings.material;
   parameters["material"] = {{"mu_mpa", m.mu_mpa},
@@ -145,14 +140,13 @@ void run_flexion(const FlexionOptions& options)
 
   ensure_directory(options.out);
   sim::FlexionOutput output(body, model, axis.axis, options.out);
-  sim::FlexionPictures pictures(body, model, output, axis.axis, settings.image_angles_deg,
-                                options.out);
+  sim::FlexionPictures pictures(model, output, axis.axis, settings.image_angles_deg, options.out);
   StageMeter sweep_meter;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
       body, conditions, settings, [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
-        output.write_angle(angle, x);
+        const auto ligament = output.write_angle(angle, x);
         if (settings.images)
-          pictures.keep(angle, x);
+          pictures.keep(angle, x, ligament);
       });
   output.finish(sweep.angles);
   nlohmann::json sweep_figures = {{"success", sweep.success},

@@ -1,6 +1,7 @@
 #include "sim/flexion/flexion_output.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/run_summary.hpp"
 #include "common/svg_plot.hpp"
 #include "common/vtk_files.hpp"
 
@@ -13,15 +14,6 @@
 namespace ligsim::sim {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-nlohmann::json vector_json(const Eigen::Vector3d& v)
-{
-  return {v.x(), v.y(), v.z()};
-}
-
-} // namespace
 
 std::string angle_label(double angle_deg)
 {
@@ -37,9 +29,9 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"strain_energy_mj", angle.strain_energy_mj},
                           {"max_fiber_stretch", angle.max_fiber_stretch},
                           {"mean_fiber_stretch", angle.mean_fiber_stretch},
-                          {"femur_force_n", vector_json(angle.femur_force_n)},
+                          {"femur_force_n", json_vector3(angle.femur_force_n)},
                           {"femur_force_magnitude_n", angle.femur_force_n.norm()},
-                          {"tibia_force_n", vector_json(angle.tibia_force_n)},
+                          {"tibia_force_n", json_vector3(angle.tibia_force_n)},
                           {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
                           {"newton_iterations", angle.newton_iterations},
                           {"substeps", angle.substeps},
@@ -80,16 +72,18 @@ vtkSmartPointer<vtkPolyData> FlexionOutput::turned_femur(double angle_deg) const
   return femur;
 }
 
-void FlexionOutput::write_angle(const AngleResult& angle, const Eigen::VectorXd& x)
+vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(const AngleResult& angle,
+                                                                const Eigen::VectorXd& x)
 {
   const std::string label = angle_label(angle.angle_deg);
   const std::string ligament = "ligament_" + label + ".vtu";
   const std::string femur = "femur_" + label + ".vtp";
-  m_ligament.write(ligament, angle.angle_deg, x);
+  auto grid = m_ligament.write(ligament, angle.angle_deg, x);
   write_vtk(turned_femur(angle.angle_deg), m_directory / femur);
   m_series.push_back({angle.angle_deg, 0, ligament});
   m_series.push_back({angle.angle_deg, 1, femur});
   m_series.push_back({angle.angle_deg, 2, "tibia.vtp"});
+  return grid;
 }
 
 void FlexionOutput::finish(const std::vector<AngleResult>& angles) const

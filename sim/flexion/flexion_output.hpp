@@ -8,6 +8,7 @@
 #include "sim/scene/scene_output.hpp"
 
 #include <nlohmann/json.hpp>
+#include <vtkUnstructuredGrid.h>
 
 #include <filesystem>
 #include <string>
@@ -26,7 +27,9 @@ public:
   FlexionOutput(const HyperelasticBody& body, const KneeModel& model, const FlexionAxis& axis,
                 std::filesystem::path directory);
 
-  void write_angle(const AngleResult& angle, const Eigen::VectorXd& x);
+  /// Writes the angle's files; returns the ligament as written (for the pictures).
+  vtkSmartPointer<vtkUnstructuredGrid> write_angle(const AngleResult& angle,
+                                                   const Eigen::VectorXd& x);
   /// Writes flexion.pvd for the angles written so far, flexion.csv and strain_energy.svg for
   /// `angles`.
   void finish(const std::vector<AngleResult>& angles) const;

@@ -3,7 +3,6 @@
 #include "sim/flexion/render/ligament_picture.hpp"
 #include "sim/flexion/render/line_plot_picture.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
-#include "sim/scene/scene_output.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkPolyData.h>
@@ -18,17 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Eigen::Vector3d mean_point(vtkPolyData* surface)
-{
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p) {
-    double xyz[3];
-    surface->GetPoint(p, xyz);
-    sum += Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-  }
-  return sum / static_cast<double>(std::max<vtkIdType>(1, surface->GetNumberOfPoints()));
-}
-
 /// One camera for every angle: looking along the flexion axis from the ligament's side, femur
 /// up, framing the ligament in all the states drawn.
 PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
@@ -39,7 +27,7 @@ PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
   const double side = (ligament_centre - axis.point_mm).dot(a) >= 0.0 ? 1.0 : -1.0;
   PictureCamera camera;
   camera.view_direction = -side * a;
-  const Eigen::Vector3d proximal = mean_point(model.femur) - mean_point(model.tibia);
+  const Eigen::Vector3d proximal = proximal_direction(model);
   Eigen::Vector3d up = proximal - proximal.dot(camera.view_direction) * camera.view_direction;
   if (up.norm() < 1e-9)
     up = camera.view_direction.unitOrthogonal();
@@ -69,11 +57,10 @@ PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
 
 } // namespace
 
-FlexionPictures::FlexionPictures(const HyperelasticBody& body, const KneeModel& model,
-                                 const FlexionOutput& output, const FlexionAxis& axis,
-                                 std::vector<double> angles_deg, fs::path directory)
-    : m_body(body)
-    , m_model(model)
+FlexionPictures::FlexionPictures(const KneeModel& model, const FlexionOutput& output,
+                                 const FlexionAxis& axis, std::vector<double> angles_deg,
+                                 fs::path directory)
+    : m_model(model)
     , m_output(output)
     , m_axis(axis)
     , m_angles(std::move(angles_deg))
@@ -81,11 +68,14 @@ FlexionPictures::FlexionPictures(const HyperelasticBody& body, const KneeModel& 
 {
 }
 
-void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x)
+void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x,
+                           vtkSmartPointer<vtkUnstructuredGrid> ligament)
 {
   for (double wanted : m_angles)
-    if (std::abs(wanted - angle.angle_deg) < 1e-9)
+    if (std::abs(wanted - angle.angle_deg) < 1e-9) {
       m_states[angle.angle_deg] = x;
+      m_grids[angle.angle_deg] = ligament;
+    }
 }
 
 std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& angles) const
@@ -94,17 +84,15 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
   OffscreenDisplay display;
 
   LigamentPicture picture;
-  std::map<double, vtkSmartPointer<vtkUnstructuredGrid>> grids;
-  for (const auto& [angle, x] : m_states) {
-    grids[angle] = deformed_grid(m_body, x, "ligament at " + angle_label(angle) + " deg");
+  for (const auto& [angle, grid] : m_grids) {
     // The 95th percentile: the few tets at an attachment's edge would otherwise take the scale.
     picture.energy_max_mpa =
-        std::max(picture.energy_max_mpa, strain_energy_percentile_mpa(grids[angle], 0.95));
+        std::max(picture.energy_max_mpa, strain_energy_percentile_mpa(grid, 0.95));
   }
   if (!m_states.empty()) {
     const PictureCamera camera =
         sweep_camera(m_model, m_axis, m_states, picture.width, picture.height);
-    for (const auto& [angle, grid] : grids) {
+    for (const auto& [angle, grid] : m_grids) {
       const vtkSmartPointer<vtkPolyData> femur = m_output.turned_femur(angle);
       picture.ligament = grid;
       picture.bones = {femur, m_model.tibia};

@@ -7,6 +7,8 @@
 #include "sim/flexion/knee_flexion.hpp"
 
 #include <Eigen/Core>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <filesystem>
 #include <map>
@@ -17,25 +19,26 @@ namespace ligsim::sim {
 class FlexionPictures {
 public:
   /// `angles_deg`: the angles to draw (others are not kept).
-  FlexionPictures(const HyperelasticBody& body, const KneeModel& model, const FlexionOutput& output,
-                  const FlexionAxis& axis, std::vector<double> angles_deg,
-                  std::filesystem::path directory);
+  FlexionPictures(const KneeModel& model, const FlexionOutput& output, const FlexionAxis& axis,
+                  std::vector<double> angles_deg, std::filesystem::path directory);
 
-  /// Keeps the state if `angle` is one to draw.
-  void keep(const AngleResult& angle, const Eigen::VectorXd& x);
+  /// Keeps the state and the ligament as written (FlexionOutput::write_angle) if `angle` is one
+  /// to draw.
+  void keep(const AngleResult& angle, const Eigen::VectorXd& x,
+            vtkSmartPointer<vtkUnstructuredGrid> ligament);
 
   /// Renders ligament_<angle>.png for the kept states and strain_energy.png for the sweep;
   /// returns the files written. Starts a private X server when there is no display.
   std::vector<std::filesystem::path> render(const std::vector<AngleResult>& angles) const;
 
 private:
-  const HyperelasticBody& m_body;
   const KneeModel& m_model;
   const FlexionOutput& m_output;
   FlexionAxis m_axis;
   std::vector<double> m_angles;
   std::filesystem::path m_directory;
   std::map<double, Eigen::VectorXd> m_states;
+  std::map<double, vtkSmartPointer<vtkUnstructuredGrid>> m_grids;
 };
 
 } // namespace ligsim::sim

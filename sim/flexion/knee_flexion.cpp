@@ -2,6 +2,8 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/resources.hpp"
+#include "common/run_summary.hpp"
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
 
@@ -16,21 +18,6 @@ namespace ligsim::sim {
 namespace {
 
 constexpr double degree = M_PI / 180.0;
-
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-Eigen::Vector3d centroid(const TriangleSurface& surface)
-{
-  return surface.V.colwise().mean().transpose();
-}
-
-nlohmann::json vector_json(const Eigen::Vector3d& v)
-{
-  return {v.x(), v.y(), v.z()};
-}
 
 /// Index of the constraint set called `name`, or -1.
 int set_index(const BoundaryConditions& conditions, const std::string& name)
@@ -59,15 +46,16 @@ void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
   double volume = 0.0;
   double weighted_stretch = 0.0;
   result.max_fiber_stretch = 0.0;
+  result.min_j = INFINITY;
   for (Eigen::Index e = 0; e < body.element_count(); ++e) {
     const ElementMeasures measures = body.measures(x, e);
     const double v0 = body.shape(e).V0;
     volume += v0;
     weighted_stretch += v0 * measures.fiber_stretch;
     result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
+    result.min_j = std::min(result.min_j, measures.J);
   }
   result.mean_fiber_stretch = weighted_stretch / volume;
-  result.min_j = body.min_j(x).first;
   const std::vector<Eigen::Vector3d> reactions = reaction_forces(conditions, residual);
   if (const int femur = set_index(conditions, "femur"); femur >= 0)
     result.femur_force_n = reactions[static_cast<std::size_t>(femur)];
@@ -210,11 +198,11 @@ ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& se
     const Eigen::Vector3d direction = settings.second_mm - settings.first_mm;
     if (!direction.allFinite() || direction.norm() < 1e-9)
       fail("flexion axis: the two points {} and {} coincide: the axis has zero length",
-           vector_json(settings.first_mm).dump(), vector_json(settings.second_mm).dump());
+           json_vector3(settings.first_mm).dump(), json_vector3(settings.second_mm).dump());
     resolved.axis = {settings.first_mm, direction.normalized()};
     resolved.method = "given as two points";
-    resolved.figures = {{"first_mm", vector_json(settings.first_mm)},
-                        {"second_mm", vector_json(settings.second_mm)}};
+    resolved.figures = {{"first_mm", json_vector3(settings.first_mm)},
+                        {"second_mm", json_vector3(settings.second_mm)}};
     return resolved;
   }
   if (!settings.posterior.allFinite() || settings.posterior.norm() < 1e-12)
@@ -222,8 +210,7 @@ ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& se
          "data (--posterior x,y,z or [axis] posterior), which makes positive angles flex the "
          "knee; or give the axis as two points (--axis x1,y1,z1,x2,y2,z2)");
   const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
-  const TriangleSurface tibia = triangle_surface(model.tibia, "tibia.vtp");
-  const Eigen::Vector3d proximal = (centroid(femur) - centroid(tibia)).normalized();
+  const Eigen::Vector3d proximal = proximal_direction(model);
   const CondyleAxisFit fit = fit_condyle_axis(femur, proximal, settings.posterior.normalized());
   resolved.axis = fit.axis;
   resolved.method = "cylinder fitted to the posterior femoral condyles";
@@ -231,8 +218,8 @@ ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& se
                       {"rms_residual_mm", fit.rms_residual_mm},
                       {"points_used", fit.points_used},
                       {"points_considered", fit.points_considered},
-                      {"proximal", vector_json(proximal)},
-                      {"posterior_hint", vector_json(settings.posterior.normalized())}};
+                      {"proximal", json_vector3(proximal)},
+                      {"posterior_hint", json_vector3(settings.posterior.normalized())}};
   return resolved;
 }
 

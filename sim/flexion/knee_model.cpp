@@ -47,7 +47,23 @@ vtkSmartPointer<vtkPolyData> bone_surface(const fs::path& dir, const std::string
   return surface;
 }
 
+Eigen::Vector3d mean_point(vtkPolyData* surface)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p) {
+    double xyz[3];
+    surface->GetPoint(p, xyz);
+    sum += Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  }
+  return sum / static_cast<double>(surface->GetNumberOfPoints());
+}
+
 } // namespace
+
+Eigen::Vector3d proximal_direction(const KneeModel& model)
+{
+  return (mean_point(model.femur) - mean_point(model.tibia)).normalized();
+}
 
 TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what)
 {

@@ -29,6 +29,10 @@ struct KneeModel {
 /// set, a bone surface, a fiber of zero length.
 KneeModel load_knee_model(const std::filesystem::path& dir);
 
+/// Up the leg: from the tibia's mean vertex to the femur's (a hint for the axis fit and the
+/// pictures' up direction, not an anatomical axis).
+Eigen::Vector3d proximal_direction(const KneeModel& model);
+
 /// The triangles of a bone surface (polygons split into triangles' fans are not expected: the
 /// pipeline writes triangles only). Throws InputError naming `what` for a non-triangle cell.
 TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what);

@@ -108,10 +108,13 @@ void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
   write(fmt::format("step_{:04d}.vtu", index), time, x);
 }
 
-void SceneOutput::write(const std::string& name, double time, const Eigen::VectorXd& x)
+vtkSmartPointer<vtkUnstructuredGrid> SceneOutput::write(const std::string& name, double time,
+                                                        const Eigen::VectorXd& x)
 {
-  write_vtk(deformed_grid(m_body, x, name), m_directory / name);
+  auto grid = deformed_grid(m_body, x, name);
+  write_vtk(grid, m_directory / name);
   m_steps.emplace_back(time, name);
+  return grid;
 }
 
 void SceneOutput::finish(const std::string& pvd)

@@ -30,8 +30,9 @@ public:
   /// Writes `<directory>/step_<index>.vtu` for positions `x` (mm) at `time` (load factor or
   /// seconds). Throws SolverError rather than write a non-finite value.
   void write_step(int index, double time, const Eigen::VectorXd& x);
-  /// The same under any file name (relative to the directory).
-  void write(const std::string& name, double time, const Eigen::VectorXd& x);
+  /// The same under any file name (relative to the directory); returns what it wrote.
+  vtkSmartPointer<vtkUnstructuredGrid> write(const std::string& name, double time,
+                                             const Eigen::VectorXd& x);
 
   /// Writes `<directory>/<pvd>` listing every step written.
   void finish(const std::string& pvd = "series.pvd");

@@ -3,6 +3,7 @@
 #include "common/atomic_file.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
+#include "common/run_summary.hpp"
 #include "sim/scene/scene_output.hpp"
 
 #include <fmt/format.h>
@@ -15,11 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json vector_json(const Eigen::Vector3d& v)
-{
-  return {v.x(), v.y(), v.z()};
-}
-
 /// Reaction force (and, for rigid motions, moment about the rotation point) of every set.
 nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen::VectorXd& x,
                               const Eigen::VectorXd& residual, std::string& csv,
@@ -29,9 +25,10 @@ nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen:
   const std::vector<Eigen::Vector3d> forces = reaction_forces(conditions, residual);
   for (std::size_t s = 0; s < forces.size(); ++s) {
     const ConstraintSet& set = conditions.constraints[s];
-    nlohmann::json entry = {{"force_n", vector_json(forces[s])}, {"magnitude_n", forces[s].norm()}};
+    nlohmann::json entry = {{"force_n", json_vector3(forces[s])},
+                            {"magnitude_n", forces[s].norm()}};
     if (set.rigid)
-      entry["moment_nmm"] = vector_json(reaction_moment(set, residual, x, set.rigid->point_mm));
+      entry["moment_nmm"] = json_vector3(reaction_moment(set, residual, x, set.rigid->point_mm));
     reactions[set.name] = entry;
     csv += fmt::format("{},{},{:.9g},{:.9g},{:.9g},{:.9g}\n", row_prefix, set.name, forces[s].x(),
                        forces[s].y(), forces[s].z(), forces[s].norm());

@@ -1,6 +1,7 @@
 #include "sim/solver/implicit_euler.hpp"
 
 #include "common/error.hpp"
+#include "common/resources.hpp"
 
 #include <fmt/format.h>
 
@@ -14,11 +15,6 @@ namespace {
 
 /// kg/m^3 to t/mm^3, the mass unit consistent with mm, N and s.
 constexpr double kg_per_m3_to_t_per_mm3 = 1e-12;
-
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 } // namespace
 

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/resources.hpp"
 
 #include <fmt/format.h>
 
@@ -17,11 +18,6 @@ constexpr int max_line_search_steps = 30;
 constexpr double armijo = 1e-4;
 /// Relative size of an energy change that round-off can produce in the element sum.
 constexpr double energy_round_off = 1e-12;
-
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 } // namespace
 
