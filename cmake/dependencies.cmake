@@ -23,3 +23,9 @@ find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
 add_library(ligsim_cholmod INTERFACE)
 target_include_directories(ligsim_cholmod INTERFACE ${CHOLMOD_INCLUDE_DIR})
 target_link_libraries(ligsim_cholmod INTERFACE ${CHOLMOD_LIBRARY})
+
+# OpenVDB: sparse volumes and narrow-band level sets. Its find module lives beside the library
+# and asks Boost for iostreams. Configuring prints a harmless warning about Debian's Imath
+# Python binding, which is not installed.
+list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+find_package(OpenVDB REQUIRED)

@@ -4,8 +4,8 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
-#include "pipeline/build/build_config.hpp"
-#include "pipeline/build/stage_graph.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/stage_graph.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/voxelize/voxelize.hpp"
 

@@ -3,9 +3,9 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
-#include "pipeline/build/build_config.hpp"
-#include "pipeline/build/stage_files.hpp"
-#include "pipeline/build/stage_graph.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
+#include "pipeline/stage_graph/stage_graph.hpp"
 
 #include <CLI/CLI.hpp>
 

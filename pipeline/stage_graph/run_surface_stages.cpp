@@ -1,6 +1,6 @@
 /// The stages that start from the surfaces: attachments, voxelize, distance, tetmesh.
 
-#include "pipeline/build/stage_files.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
 
 #include "common/vtk_files.hpp"
 #include "stages/attachments/attachments.hpp"

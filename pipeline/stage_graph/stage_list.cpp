@@ -1,5 +1,5 @@
-#include "pipeline/build/stage_files.hpp"
-#include "pipeline/build/stage_graph.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
+#include "pipeline/stage_graph/stage_graph.hpp"
 
 namespace ligsim::pipeline {
 

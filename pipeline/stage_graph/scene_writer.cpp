@@ -1,4 +1,4 @@
-#include "pipeline/build/scene_writer.hpp"
+#include "pipeline/stage_graph/scene_writer.hpp"
 
 #include "common/atomic_file.hpp"
 

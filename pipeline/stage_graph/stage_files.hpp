@@ -2,7 +2,7 @@
 /// @brief What the build stages share: the names of their files and how to load their inputs.
 
 #include "common/mesh.hpp"
-#include "pipeline/build/build_config.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 #include "stages/geometry/grid.hpp"
 #include "stages/geometry/polyline.hpp"
 

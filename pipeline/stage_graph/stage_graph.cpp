@@ -1,4 +1,4 @@
-#include "pipeline/build/stage_graph.hpp"
+#include "pipeline/stage_graph/stage_graph.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/content_hash.hpp"

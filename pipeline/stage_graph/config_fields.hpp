@@ -3,7 +3,7 @@
 /// file, writing summary.json and keying the stage cache all walk these lists, so none of them
 /// can miss a parameter.
 
-#include "pipeline/build/build_config.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 
 #include <string>
 #include <type_traits>

@@ -1,4 +1,4 @@
-#include "pipeline/build/stage_files.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"

@@ -1,7 +1,7 @@
 /// The last stage: the simulation model, the bone surfaces and the scene file.
 
-#include "pipeline/build/scene_writer.hpp"
-#include "pipeline/build/stage_files.hpp"
+#include "pipeline/stage_graph/scene_writer.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
 
 #include "common/vtk_files.hpp"
 #include "stages/io/vtk_convert.hpp"

@@ -1,6 +1,6 @@
 /// The stages on the voxel image: centerline, field, fibers.
 
-#include "pipeline/build/stage_files.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"

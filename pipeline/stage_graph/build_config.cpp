@@ -1,7 +1,7 @@
-#include "pipeline/build/build_config.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 
 #include "common/error.hpp"
-#include "pipeline/build/config_fields.hpp"
+#include "pipeline/stage_graph/config_fields.hpp"
 
 #include <toml++/toml.h>
 

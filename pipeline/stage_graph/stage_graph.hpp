@@ -2,7 +2,7 @@
 /// @brief The model-building stages as a graph of files: what each reads, writes and depends on,
 /// and the cache that reruns a stage only when its inputs or parameters changed.
 
-#include "pipeline/build/build_config.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @brief The scene file the model stage writes beside model.vtu, for `ligsim simulate`.
 
-#include "pipeline/build/build_config.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 #include "stages/model/model.hpp"
 
 #include <filesystem>
