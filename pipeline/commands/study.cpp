@@ -7,6 +7,7 @@
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/study/convergence_study.hpp"
+#include "pipeline/study/sensitivity_study.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
 
@@ -113,6 +114,52 @@ void run_convergence(const ConvergenceOptions& o)
       "plot: {}", (inputs.out / (inputs.png ? "convergence.png" : "convergence.svg")).string()));
 }
 
+struct SensitivityOptions {
+  StudyOptions study;
+  study::SensitivitySettings settings;
+};
+
+void run_sensitivity(const SensitivityOptions& o)
+{
+  RunSummary summary("study sensitivity");
+  const StageMeter meter;
+  study::SensitivityInputs inputs;
+  inputs.build = pipeline::load_build_config(o.study.model_config);
+  inputs.flexion = flexion_settings(o.study);
+  inputs.settings = o.settings;
+  inputs.out = o.study.out;
+  inputs.png = !o.study.no_png;
+  const study::SensitivitySettings& s = inputs.settings;
+  if (!(s.offset_mm > 0.0) || !(s.roughness_mm > 0.0) || s.smoothing_iterations < 1 ||
+      !(s.tibia_end_length_mm > 0.0))
+    fail("study sensitivity: --offset, --roughness, --smoothing-iterations and "
+         "--tibia-end-length must be positive");
+  for (double alpha : s.alphas)
+    if (!(alpha >= 0.0 && alpha <= 1.0))
+      fail("study sensitivity: --alphas holds {}: alpha lies in [0, 1]", alpha);
+  summary.inputs() = {{"model_config", o.study.model_config.string()},
+                      {"config", o.study.flexion_config.string()}};
+  summary.parameters() = {{"offset_mm", s.offset_mm},
+                          {"smoothing_iterations", s.smoothing_iterations},
+                          {"roughness_mm", s.roughness_mm},
+                          {"attachment_changes_mm", s.attachment_changes_mm},
+                          {"alphas", s.alphas},
+                          {"tibia_end_length_mm", s.tibia_end_length_mm},
+                          {"factors", s.factors},
+                          {"angles_deg", inputs.flexion.angles_deg},
+                          {"contact", "none: the ligament may pass through the bones"}};
+  std::optional<sim::OffscreenDisplay> display;
+  if (inputs.png)
+    display.emplace();
+  ensure_directory(inputs.out);
+  summary.results() = study::run_sensitivity_study(inputs);
+  summary.add_stage("study", meter);
+  summary.write(inputs.out);
+  log_info(fmt::format("table: {}", (inputs.out / "sensitivity.md").string()));
+  log_info(fmt::format(
+      "plot: {}", (inputs.out / (inputs.png ? "sensitivity.png" : "sensitivity.svg")).string()));
+}
+
 } // namespace
 
 void add_study_command(CLI::App& app)
@@ -142,6 +189,35 @@ void add_study_command(CLI::App& app)
                    "the meshes the interactive runs use (factors of the default)")
       ->delimiter(',');
   convergence->callback([convergence_options] { run_convergence(*convergence_options); });
+
+  auto sensitivity_options = std::make_shared<SensitivityOptions>();
+  auto* sensitivity = study->add_subcommand(
+      "sensitivity",
+      "segmentation variants one factor at a time: the spread of the flexion figures");
+  add_study_options(sensitivity, sensitivity_options->study);
+  study::SensitivitySettings& s = sensitivity_options->settings;
+  sensitivity->add_option(
+      "--offset", s.offset_mm,
+      "largest surface offset, mm (one voxel of the source image; default 0.5)");
+  sensitivity->add_option("--smoothing-iterations", s.smoothing_iterations,
+                          "Taubin smoothing iterations (default 10)");
+  sensitivity->add_option("--roughness", s.roughness_mm, "roughening rms, mm (default 0.15)");
+  sensitivity
+      ->add_option("--attachment-changes", s.attachment_changes_mm,
+                   "attachment areas grown (+) or shrunk (-), mm (default -2,-1,1,2)")
+      ->delimiter(',');
+  sensitivity->add_option("--alphas", s.alphas, "centerline alphas (default 0,0.5,1)")
+      ->delimiter(',');
+  sensitivity->add_option("--tibia-end-length", s.tibia_end_length_mm,
+                          "changed rule: the tibial area as the distal end of this length, mm "
+                          "(default 10)");
+  sensitivity
+      ->add_option("--factors", s.factors,
+                   "factors to vary (default all): offset, smoothing, attachment-size, "
+                   "attachment-rule, alpha")
+      ->delimiter(',')
+      ->check(CLI::IsMember(study::sensitivity_factor_names()));
+  sensitivity->callback([sensitivity_options] { run_sensitivity(*sensitivity_options); });
 }
 
 } // namespace ligsim::cli

@@ -7,8 +7,8 @@
 #include "pipeline/study/run_errors.hpp"
 #include "pipeline/study/study_plot.hpp"
 #include "pipeline/study/study_runs.hpp"
+#include "stages/geometry/surface_topology.hpp"
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -235,17 +235,7 @@ void write_convergence_plot(const std::vector<Run>& runs, const fs::path& out, b
 double ligament_thickness_mm(const pipeline::BuildConfig& config)
 {
   const TriangleSurface surface = pipeline::load_ligament(config);
-  double volume = 0.0, area = 0.0;
-  for (Eigen::Index f = 0; f < surface.F.rows(); ++f) {
-    const Eigen::Vector3d a = surface.V.row(surface.F(f, 0)).transpose();
-    const Eigen::Vector3d b = surface.V.row(surface.F(f, 1)).transpose();
-    const Eigen::Vector3d c = surface.V.row(surface.F(f, 2)).transpose();
-    volume += a.dot(b.cross(c)) / 6.0;
-    area += 0.5 * (b - a).cross(c - a).norm();
-  }
-  if (!(area > 0.0) || !(volume > 0.0))
-    fail("study: the ligament surface {} encloses no volume", config.surface.string());
-  return 2.0 * volume / area;
+  return 2.0 * std::abs(signed_volume(surface)) / surface_area(surface);
 }
 
 nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)

@@ -17,11 +17,11 @@ namespace ligsim::study {
 /// Sizes are factors of the build's defaults: the mesh's cell and facet sizes h/2 and facet
 /// distance h/20 (h = 2 volume / area of the ligament), the voxel spacing h/8.
 struct ConvergenceLadder {
-  std::vector<double> mesh_scales = {2.0, 1.6, 1.25, 1.0, 0.8, 0.65, 0.53};
+  std::vector<double> mesh_scales = {3.0, 2.2, 1.6, 1.25, 1.0, 0.8, 0.63, 0.5};
   std::vector<double> voxel_scales = {2.0, 1.4, 1.0, 0.7, 0.5};
   std::vector<double> time_steps_s = {0.03, 0.01, 0.003, 0.001};
   /// The meshes the interactive runs use.
-  std::vector<double> interactive_mesh_scales = {1.25, 1.0};
+  std::vector<double> interactive_mesh_scales = {1.6, 1.25, 1.0};
 };
 
 struct ConvergenceInputs {
@@ -40,7 +40,8 @@ struct ConvergenceInputs {
 /// reference run does.
 nlohmann::json run_convergence_study(const ConvergenceInputs& inputs);
 
-/// 2 volume / area of a closed surface (mm): the thickness the build's defaults scale with.
+/// 2 volume / area of the ligament surface (mm): the thickness the build's defaults scale with
+/// (the same formula as the voxelize and tetmesh stages).
 double ligament_thickness_mm(const pipeline::BuildConfig& config);
 
 } // namespace ligsim::study
