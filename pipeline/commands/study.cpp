@@ -6,6 +6,7 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/study/cohort_table.hpp"
 #include "pipeline/study/convergence_study.hpp"
 #include "pipeline/study/sensitivity_study.hpp"
 #include "sim/flexion/flexion_config.hpp"
@@ -160,6 +161,57 @@ void run_sensitivity(const SensitivityOptions& o)
       "plot: {}", (inputs.out / (inputs.png ? "sensitivity.png" : "sensitivity.svg")).string()));
 }
 
+struct CohortOptions {
+  std::vector<std::string> members;
+  fs::path out;
+  bool no_png = false;
+};
+
+void run_cohort(const CohortOptions& o)
+{
+  RunSummary summary("study cohort");
+  const StageMeter meter;
+  std::vector<study::CohortMember> members;
+  for (const std::string& text : o.members) {
+    const auto equals = text.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == text.size())
+      fail("study cohort: --member '{}' is not NAME=FLEXION_DIR", text);
+    members.push_back({text.substr(0, equals), text.substr(equals + 1)});
+    summary.inputs()[members.back().name] = members.back().flexion_dir.string();
+  }
+  std::optional<sim::OffscreenDisplay> display;
+  if (!o.no_png)
+    display.emplace();
+  summary.results() = study::write_cohort_table(members, o.out, !o.no_png);
+  summary.add_stage("cohort", meter);
+  summary.write(o.out);
+  log_info(fmt::format("table: {}", (o.out / "cohort.md").string()));
+}
+
+struct VariantOptions {
+  fs::path model_config;
+  std::string kind;
+  double amount = 0.0;
+  fs::path out;
+};
+
+void run_variant(const VariantOptions& o)
+{
+  RunSummary summary("study variant");
+  const StageMeter meter;
+  const pipeline::BuildConfig config = pipeline::load_build_config(o.model_config);
+  const fs::path surface = study::write_surface_variant(config, o.kind, o.amount, o.out);
+  summary.inputs() = {{"model_config", o.model_config.string()}};
+  summary.parameters() = {{"kind", o.kind}, {"amount", o.amount}};
+  summary.results() = {{"surface", surface.string()},
+                       {"build_flags", "--surface " + surface.string() +
+                                           " --femur-rule array --femur-array study_femur_area "
+                                           "--tibia-rule array --tibia-array study_tibia_area"}};
+  summary.add_stage("variant", meter);
+  summary.write(o.out);
+  log_info(fmt::format("surface: {}", surface.string()));
+}
+
 } // namespace
 
 void add_study_command(CLI::App& app)
@@ -218,6 +270,34 @@ void add_study_command(CLI::App& app)
       ->delimiter(',')
       ->check(CLI::IsMember(study::sensitivity_factor_names()));
   sensitivity->callback([sensitivity_options] { run_sensitivity(*sensitivity_options); });
+
+  auto variant_options = std::make_shared<VariantOptions>();
+  auto* variant = study->add_subcommand(
+      "variant", "one segmentation variant as a surface file with the attachment areas as flags");
+  variant->add_option("--model-config", variant_options->model_config, "build config (.toml)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  variant->add_option("--kind", variant_options->kind, "offset, smooth, rough or areas")
+      ->required()
+      ->check(CLI::IsMember({"offset", "smooth", "rough", "areas"}));
+  variant
+      ->add_option("--amount", variant_options->amount,
+                   "offset: mm along the normals; smooth: iterations; rough: rms mm; areas: mm "
+                   "grown (+) or shrunk (-)")
+      ->required();
+  variant->add_option("--out", variant_options->out, "output folder")->required();
+  variant->callback([variant_options] { run_variant(*variant_options); });
+
+  auto cohort_options = std::make_shared<CohortOptions>();
+  auto* cohort = study->add_subcommand(
+      "cohort", "one table and plot from the flexion sweeps of several subjects or variants");
+  cohort
+      ->add_option("--member", cohort_options->members,
+                   "NAME=FLEXION_DIR: a member and its `ligsim flexion` output folder (repeatable)")
+      ->required();
+  cohort->add_option("--out", cohort_options->out, "output folder")->required();
+  cohort->add_flag("--no-png", cohort_options->no_png, "plot as SVG only (no X server needed)");
+  cohort->callback([cohort_options] { run_cohort(*cohort_options); });
 }
 
 } // namespace ligsim::cli

@@ -223,6 +223,30 @@ const std::vector<std::string>& sensitivity_factor_names()
   return names;
 }
 
+fs::path write_surface_variant(const pipeline::BuildConfig& config, const std::string& kind,
+                               double amount, const fs::path& folder)
+{
+  std::map<std::string, Eigen::VectorXd> arrays;
+  const TriangleSurface surface = pipeline::load_ligament(config, &arrays);
+  const attachments::Attachments areas = source_areas(config, surface, arrays);
+  std::vector<int> femur = areas.femur.vertices, tibia = areas.tibia.vertices;
+  TriangleSurface changed = surface;
+  if (kind == "offset")
+    changed = offset_surface(surface, amount);
+  else if (kind == "smooth")
+    changed = smooth_surface(surface, static_cast<int>(std::lround(amount)));
+  else if (kind == "rough")
+    changed = roughen_surface(surface, amount, 4, 12);
+  else if (kind == "areas") {
+    femur = grow_area(surface, femur, amount);
+    tibia = grow_area(surface, tibia, amount);
+  } else
+    fail("study variant: unknown kind '{}' (offset, smooth, rough or areas)", kind);
+  if (femur.empty() || tibia.empty())
+    fail("study variant: shrinking the attachment areas by {:g} mm leaves one empty", -amount);
+  return with_surface(config, changed, femur, tibia, folder).surface;
+}
+
 nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs)
 {
   const std::vector<Variant> variants = make_variants(inputs);

@@ -42,6 +42,16 @@ struct SensitivityInputs {
   bool png = true;
 };
 
+/// One segmentation variant as files, for `ligsim build --surface FILE --femur-rule array
+/// --femur-array study_femur_area --tibia-rule array --tibia-array study_tibia_area`: the
+/// ligament surface of `config` changed by `kind` ("offset": moved `amount` mm along its
+/// normals; "smooth": `amount` Taubin iterations; "rough": bumps of rms `amount` mm; "areas":
+/// attachment areas grown (+) or shrunk (-) by `amount` mm) with the config's attachment areas
+/// as point-data flags, written to `folder`/surface.vtp. Returns the file.
+std::filesystem::path write_surface_variant(const pipeline::BuildConfig& config,
+                                            const std::string& kind, double amount,
+                                            const std::filesystem::path& folder);
+
 /// Builds every variant into out/models/<name> (surfaces in out/variants/<name>), sweeps it, and
 /// writes sensitivity.csv (variant x angle), sensitivity.md (figures per variant at the last
 /// angle, the spread: min / median / max, and per factor the largest change and its share of
