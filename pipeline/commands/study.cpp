@@ -99,6 +99,7 @@ void run_convergence(const ConvergenceOptions& o)
                       {"config", o.study.flexion_config.string()}};
   summary.parameters() = {{"mesh_scales", inputs.ladder.mesh_scales},
                           {"voxel_scales", inputs.ladder.voxel_scales},
+                          {"voxel_mesh_scale", inputs.ladder.voxel_mesh_scale},
                           {"time_steps_s", inputs.ladder.time_steps_s},
                           {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales},
                           {"angles_deg", inputs.flexion.angles_deg},
@@ -227,18 +228,23 @@ void add_study_command(CLI::App& app)
   add_study_options(convergence, convergence_options->study);
   study::ConvergenceLadder& ladder = convergence_options->ladder;
   convergence
-      ->add_option("--mesh-scales", ladder.mesh_scales,
-                   "mesh sizes as factors of the default (h/2): the finest is the reference")
+      ->add_option(
+          "--mesh-scales", ladder.mesh_scales,
+          "mesh sizes as factors of the config's (default h/2): the finest is the reference")
       ->delimiter(',');
   convergence
       ->add_option("--voxel-scales", ladder.voxel_scales,
-                   "voxel spacings as factors of the default (h/8), at the default mesh")
+                   "voxel spacings as factors of the config's (default h/8)")
       ->delimiter(',');
+  convergence
+      ->add_option("--voxel-mesh-scale", ladder.voxel_mesh_scale,
+                   "the mesh of the voxel ladder (factor of the default, default 1)")
+      ->check(CLI::PositiveNumber);
   convergence->add_option("--time-steps", ladder.time_steps_s, "interactive time steps, s")
       ->delimiter(',');
   convergence
       ->add_option("--interactive-mesh-scales", ladder.interactive_mesh_scales,
-                   "the meshes the interactive runs use (factors of the default)")
+                   "the meshes the interactive runs use (factors as --mesh-scales)")
       ->delimiter(',');
   convergence->callback([convergence_options] { run_convergence(*convergence_options); });
 

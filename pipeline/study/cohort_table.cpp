@@ -45,7 +45,7 @@ MemberRows read_member(const CohortMember& member)
   rows.angles = summary["results"]["angles"];
   rows.success = summary["results"].value("success", false);
   if (summary.contains("stages") && summary["stages"].contains("setup"))
-    rows.tets = summary["stages"]["setup"]["figures"].value("tets", 0);
+    rows.tets = summary["stages"]["setup"].value("tets", 0);
   return rows;
 }
 

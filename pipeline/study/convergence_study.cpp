@@ -50,14 +50,20 @@ std::string model_name(double mesh_scale, double voxel_scale)
   return fmt::format("mesh{:g}-voxel{:g}", mesh_scale, voxel_scale);
 }
 
+/// The config's sizes times the scales; a size the config leaves at 0 starts from the build's
+/// default (mesh h/2, facet distance h/20, voxel h/8).
 pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double thickness_mm,
                                     double mesh_scale, double voxel_scale)
 {
+  auto scaled = [](double value, double fallback, double scale) {
+    return scale * (value > 0.0 ? value : fallback);
+  };
   pipeline::BuildConfig config = base;
-  config.tetmesh.cell_size_mm = mesh_scale * thickness_mm / 2.0;
-  config.tetmesh.facet_size_mm = mesh_scale * thickness_mm / 2.0;
-  config.tetmesh.facet_distance_mm = mesh_scale * thickness_mm / 20.0;
-  config.voxelize.spacing_mm = voxel_scale * thickness_mm / 8.0;
+  config.tetmesh.cell_size_mm = scaled(base.tetmesh.cell_size_mm, thickness_mm / 2.0, mesh_scale);
+  config.tetmesh.facet_size_mm = scaled(base.tetmesh.facet_size_mm, thickness_mm / 2.0, mesh_scale);
+  config.tetmesh.facet_distance_mm =
+      scaled(base.tetmesh.facet_distance_mm, thickness_mm / 20.0, mesh_scale);
+  config.voxelize.spacing_mm = scaled(base.voxelize.spacing_mm, thickness_mm / 8.0, voxel_scale);
   return config;
 }
 
@@ -254,7 +260,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   for (double s : mesh_scales)
     specs.push_back({"quasi-static, mesh", s, 1.0, 0.0});
   for (double v : voxel_scales)
-    specs.push_back({"quasi-static, voxel", 1.0, v, 0.0});
+    specs.push_back({"quasi-static, voxel", ladder.voxel_mesh_scale, v, 0.0});
   for (double s : ladder.interactive_mesh_scales) {
     std::vector<double> steps = ladder.time_steps_s;
     std::sort(steps.rbegin(), steps.rend());

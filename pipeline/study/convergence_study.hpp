@@ -14,11 +14,13 @@
 
 namespace ligsim::study {
 
-/// Sizes are factors of the build's defaults: the mesh's cell and facet sizes h/2 and facet
-/// distance h/20 (h = 2 volume / area of the ligament), the voxel spacing h/8.
+/// Sizes are factors of the build config's: its cell and facet sizes and facet distance, its
+/// voxel spacing, or where it leaves them at 0 the build's defaults h/2, h/20 and h/8 (h = 2
+/// volume / area of the ligament).
 struct ConvergenceLadder {
   std::vector<double> mesh_scales = {3.0, 2.2, 1.6, 1.25, 1.0, 0.8, 0.63, 0.5};
   std::vector<double> voxel_scales = {2.0, 1.4, 1.0, 0.7, 0.5};
+  double voxel_mesh_scale = 1.0; ///< the mesh the voxel ladder uses
   std::vector<double> time_steps_s = {0.03, 0.01, 0.003, 0.001};
   /// The meshes the interactive runs use.
   std::vector<double> interactive_mesh_scales = {1.6, 1.25, 1.0};
