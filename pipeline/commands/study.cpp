@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -81,10 +82,32 @@ struct ConvergenceOptions {
   study::ConvergenceLadder ladder;
 };
 
+/// What every study job does around its own work: the display for the PNG plots (before
+/// anything is computed), the output folder, summary.json, and where the table and plot are.
+void run_study_job(const StudyOptions& o, const std::string& name, nlohmann::json parameters,
+                   const std::vector<double>& angles_deg,
+                   const std::function<nlohmann::json()>& run)
+{
+  RunSummary summary("study " + name);
+  const StageMeter meter;
+  summary.inputs() = {{"model_config", o.model_config.string()},
+                      {"config", o.flexion_config.string()}};
+  parameters["angles_deg"] = angles_deg;
+  parameters["contact"] = "none: the ligament may pass through the bones";
+  summary.parameters() = parameters;
+  std::optional<sim::OffscreenDisplay> display;
+  if (!o.no_png)
+    display.emplace();
+  ensure_directory(o.out);
+  summary.results() = run();
+  summary.add_stage("study", meter);
+  summary.write(o.out);
+  log_info(fmt::format("table: {}", (o.out / (name + ".md")).string()));
+  log_info(fmt::format("plot: {}", (o.out / (name + (o.no_png ? ".svg" : ".png"))).string()));
+}
+
 void run_convergence(const ConvergenceOptions& o)
 {
-  RunSummary summary("study convergence");
-  const StageMeter meter;
   study::ConvergenceInputs inputs;
   inputs.build = pipeline::load_build_config(o.study.model_config);
   inputs.flexion = flexion_settings(o.study);
@@ -95,25 +118,13 @@ void run_convergence(const ConvergenceOptions& o)
   check_ladder(inputs.ladder.voxel_scales, "--voxel-scales", true);
   check_ladder(inputs.ladder.time_steps_s, "--time-steps", true);
   check_ladder(inputs.ladder.interactive_mesh_scales, "--interactive-mesh-scales", true);
-  summary.inputs() = {{"model_config", o.study.model_config.string()},
-                      {"config", o.study.flexion_config.string()}};
-  summary.parameters() = {{"mesh_scales", inputs.ladder.mesh_scales},
-                          {"voxel_scales", inputs.ladder.voxel_scales},
-                          {"voxel_mesh_scale", inputs.ladder.voxel_mesh_scale},
-                          {"time_steps_s", inputs.ladder.time_steps_s},
-                          {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales},
-                          {"angles_deg", inputs.flexion.angles_deg},
-                          {"contact", "none: the ligament may pass through the bones"}};
-  std::optional<sim::OffscreenDisplay> display;
-  if (inputs.png)
-    display.emplace();
-  ensure_directory(inputs.out);
-  summary.results() = study::run_convergence_study(inputs);
-  summary.add_stage("study", meter);
-  summary.write(inputs.out);
-  log_info(fmt::format("table: {}", (inputs.out / "convergence.md").string()));
-  log_info(fmt::format(
-      "plot: {}", (inputs.out / (inputs.png ? "convergence.png" : "convergence.svg")).string()));
+  run_study_job(o.study, "convergence",
+                {{"mesh_scales", inputs.ladder.mesh_scales},
+                 {"voxel_scales", inputs.ladder.voxel_scales},
+                 {"voxel_mesh_scale", inputs.ladder.voxel_mesh_scale},
+                 {"time_steps_s", inputs.ladder.time_steps_s},
+                 {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales}},
+                inputs.flexion.angles_deg, [&] { return study::run_convergence_study(inputs); });
 }
 
 struct SensitivityOptions {
@@ -123,8 +134,6 @@ struct SensitivityOptions {
 
 void run_sensitivity(const SensitivityOptions& o)
 {
-  RunSummary summary("study sensitivity");
-  const StageMeter meter;
   study::SensitivityInputs inputs;
   inputs.build = pipeline::load_build_config(o.study.model_config);
   inputs.flexion = flexion_settings(o.study);
@@ -139,27 +148,15 @@ void run_sensitivity(const SensitivityOptions& o)
   for (double alpha : s.alphas)
     if (!(alpha >= 0.0 && alpha <= 1.0))
       fail("study sensitivity: --alphas holds {}: alpha lies in [0, 1]", alpha);
-  summary.inputs() = {{"model_config", o.study.model_config.string()},
-                      {"config", o.study.flexion_config.string()}};
-  summary.parameters() = {{"offset_mm", s.offset_mm},
-                          {"smoothing_iterations", s.smoothing_iterations},
-                          {"roughness_mm", s.roughness_mm},
-                          {"attachment_changes_mm", s.attachment_changes_mm},
-                          {"alphas", s.alphas},
-                          {"tibia_end_length_mm", s.tibia_end_length_mm},
-                          {"factors", s.factors},
-                          {"angles_deg", inputs.flexion.angles_deg},
-                          {"contact", "none: the ligament may pass through the bones"}};
-  std::optional<sim::OffscreenDisplay> display;
-  if (inputs.png)
-    display.emplace();
-  ensure_directory(inputs.out);
-  summary.results() = study::run_sensitivity_study(inputs);
-  summary.add_stage("study", meter);
-  summary.write(inputs.out);
-  log_info(fmt::format("table: {}", (inputs.out / "sensitivity.md").string()));
-  log_info(fmt::format(
-      "plot: {}", (inputs.out / (inputs.png ? "sensitivity.png" : "sensitivity.svg")).string()));
+  run_study_job(o.study, "sensitivity",
+                {{"offset_mm", s.offset_mm},
+                 {"smoothing_iterations", s.smoothing_iterations},
+                 {"roughness_mm", s.roughness_mm},
+                 {"attachment_changes_mm", s.attachment_changes_mm},
+                 {"alphas", s.alphas},
+                 {"tibia_end_length_mm", s.tibia_end_length_mm},
+                 {"factors", s.factors}},
+                inputs.flexion.angles_deg, [&] { return study::run_sensitivity_study(inputs); });
 }
 
 struct CohortOptions {
