@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "pipeline/study/csv_text.hpp"
 #include "pipeline/study/study_plot.hpp"
 
 #include <fmt/format.h>
@@ -99,8 +100,8 @@ nlohmann::json write_cohort_table(const std::vector<CohortMember>& members, cons
       const double angle = a.value("angle_deg", 0.0);
       const double force = a.value("femur_force_magnitude_n", 0.0);
       last_energy = a.value("strain_energy_mj", 0.0);
-      csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", m.name, m.tets, angle,
-                         last_energy, a.value("mean_fiber_stretch", 0.0),
+      csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", csv_quoted(m.name), m.tets,
+                         angle, last_energy, a.value("mean_fiber_stretch", 0.0),
                          a.value("max_fiber_stretch", 0.0), force,
                          a.value("converged", false) ? 1 : 0);
       series.x.push_back(angle);

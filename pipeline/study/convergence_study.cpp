@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
+#include "pipeline/study/csv_text.hpp"
 #include "pipeline/study/run_errors.hpp"
 #include "pipeline/study/study_plot.hpp"
 #include "pipeline/study/study_runs.hpp"
@@ -146,27 +147,28 @@ void write_tables(const std::vector<Run>& runs, const fs::path& out, const std::
     const bool interactive = run.spec.time_step_s > 0.0;
     const auto& r = run.worst_vs_reference;
     const auto& f = run.worst_vs_family;
-    csv += fmt::format("{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:."
-                       "6g},{:.6g},{:.6g},"
-                       "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},\"{}\"\n",
-                       run.spec.family, run.spec.mesh_scale, run.spec.voxel_scale,
-                       interactive ? "interactive" : "static", run.spec.time_step_s,
-                       run.flexion.tets, run.model.build_s, run.model.peak_rss_mib,
-                       run.flexion.solve_s, run.flexion.peak_rss_mib, run.flexion.frames,
-                       seconds_per_frame(run), run.flexion.frames_per_second, r[0], r[1], r[2],
-                       r[3], f[0], f[1], f[2], f[3], run.energy_error_vs_extrapolated, run.failure);
+    csv += fmt::format(
+        "{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:."
+        "6g},{:.6g},{:.6g},"
+        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
+        csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
+        interactive ? "interactive" : "static", run.spec.time_step_s, run.flexion.tets,
+        run.model.build_s, run.model.peak_rss_mib, run.flexion.solve_s, run.flexion.peak_rss_mib,
+        run.flexion.frames, seconds_per_frame(run), run.flexion.frames_per_second, r[0], r[1], r[2],
+        r[3], f[0], f[1], f[2], f[3], run.energy_error_vs_extrapolated, csv_quoted(run.failure));
     for (const AngleFigures& a : run.flexion.angles) {
       std::array<double, 4> e;
       e.fill(kNaN);
       for (const AngleErrors& row : run.errors)
         if (std::abs(row.angle_deg - a.angle_deg) < 1e-9)
           e = row.error;
-      angles_csv += fmt::format(
-          "{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-          "{:.6g},{:.6g}\n",
-          run.spec.family, run.spec.mesh_scale, run.spec.voxel_scale, run.spec.time_step_s,
-          run.flexion.tets, a.angle_deg, a.strain_energy_mj, a.mean_fiber_stretch,
-          a.p95_fiber_stretch, a.max_fiber_stretch, a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
+      angles_csv +=
+          fmt::format("{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                      "{:.6g},{:.6g}\n",
+                      csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
+                      run.spec.time_step_s, run.flexion.tets, a.angle_deg, a.strain_energy_mj,
+                      a.mean_fiber_stretch, a.p95_fiber_stretch, a.max_fiber_stretch,
+                      a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
     }
     md += fmt::format(
         "| {} | {} | {:g} | {} | {:.2f} | {:.2f} | {:.4f} | {:.0f} | {} | {} | {} | "

@@ -6,6 +6,7 @@
 #include "common/vtk_files.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/study/convergence_study.hpp"
+#include "pipeline/study/csv_text.hpp"
 #include "pipeline/study/run_errors.hpp"
 #include "pipeline/study/study_plot.hpp"
 #include "pipeline/study/study_runs.hpp"
@@ -291,14 +292,14 @@ nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs)
     for (const AngleFigures& a : o.flexion.angles) {
       const AngleFigures* b = at_angle(baseline.flexion, a.angle_deg);
       csv += fmt::format(
-          "{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g},\n", o.variant.factor,
-          o.variant.name, o.flexion.tets, a.angle_deg, a.strain_energy_mj, a.mean_fiber_stretch,
-          a.p95_fiber_stretch, a.max_fiber_stretch, a.femur_force_n.norm(),
+          "{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.4g},\n", csv_quoted(o.variant.factor),
+          csv_quoted(o.variant.name), o.flexion.tets, a.angle_deg, a.strain_energy_mj,
+          a.mean_fiber_stretch, a.p95_fiber_stretch, a.max_fiber_stretch, a.femur_force_n.norm(),
           b ? 100.0 * (a.femur_force_n.norm() / b->femur_force_n.norm() - 1.0) : NAN);
     }
     if (!o.failure.empty())
-      csv += fmt::format("{},{},{},,,,,,,,\"{}\"\n", o.variant.factor, o.variant.name,
-                         o.flexion.tets, o.failure);
+      csv += fmt::format("{},{},{},,,,,,,,{}\n", csv_quoted(o.variant.factor),
+                         csv_quoted(o.variant.name), o.flexion.tets, csv_quoted(o.failure));
   }
   write_text_atomically(inputs.out / "sensitivity.csv", csv);
 

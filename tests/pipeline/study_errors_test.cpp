@@ -1,6 +1,7 @@
 /// pipeline/study/run_errors and study_runs: relative errors per angle, Richardson extrapolation
 /// on exact power laws, the volume-weighted quantile.
 
+#include "pipeline/study/csv_text.hpp"
 #include "pipeline/study/run_errors.hpp"
 #include "pipeline/study/study_runs.hpp"
 
@@ -81,4 +82,11 @@ TEST(StudyErrors, WeightedQuantileCountsVolume)
   EXPECT_DOUBLE_EQ(weighted_quantile(values, volumes, 0.93), 2.0);  // 9.5 at or below 2
   EXPECT_DOUBLE_EQ(weighted_quantile(values, volumes, 0.954), 3.0); // 9.55 at or below 3
   EXPECT_DOUBLE_EQ(weighted_quantile(values, volumes, 0.96), 4.0);
+}
+
+TEST(StudyCsv, TextFieldsAreQuoted)
+{
+  EXPECT_EQ(csv_quoted("quasi-static, mesh"), "\"quasi-static, mesh\"");
+  EXPECT_EQ(csv_quoted("surface 'a' said \"no\""), "\"surface 'a' said \"\"no\"\"\"");
+  EXPECT_EQ(csv_quoted(""), "\"\"");
 }

@@ -68,8 +68,8 @@ TEST(StudyWorkflow, TwoSubjectCohortWithSnakemake)
     for (std::string field; std::getline(fields, field, ',');)
       f.push_back(field);
     ASSERT_EQ(f.size(), 8u) << line;
-    if (f[2] == "30")
-      force_at_30[f[0]] = std::stod(f[6]);
+    if (f[2] == "30") // member names are quoted
+      force_at_30[f[0].substr(1, f[0].size() - 2)] = std::stod(f[6]);
   }
   EXPECT_EQ(rows, 4);
   EXPECT_GT(force_at_30["band-thicker"], force_at_30["band"]);
