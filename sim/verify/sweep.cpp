@@ -296,7 +296,7 @@ PlotSpec sweep_plot(const std::vector<SweepRow>& rows, const std::string& case_n
       spec.series.push_back(series);
     }
   PlotSeries febio;
-  febio.name = "FEBio 4.11 (16^3, its recorded wall time)";
+  febio.name = "FEBio 4.11 (recorded time)";
   for (const SweepRow& r : rows)
     if (r.family == "febio") {
       febio.x.push_back(r.wall_s);
