@@ -22,5 +22,7 @@ void add_verify_command(CLI::App& app);
 void add_tear_command(CLI::App& app);
 /// `flexion`: the knee flexion sweep on a built model.
 void add_flexion_command(CLI::App& app);
+/// `study`: convergence ladders, segmentation sensitivity, cohort tables.
+void add_study_command(CLI::App& app);
 
 } // namespace ligsim::cli

@@ -24,7 +24,7 @@ struct SweepSettings {
 };
 
 struct SweepRow {
-  std::string family; ///< "mesh" or "tolerance" (or "finest")
+  std::string family; ///< "mesh" or "tolerance" (or "finest", or "febio": FEBio's own solution)
   int cells = 0;
   std::string linear_solver;
   double tolerance = 0.0;
@@ -49,14 +49,16 @@ struct SweepRow {
 };
 
 /// Runs the sweep on case `c` with its matched energy; every mesh carries the case's total
-/// force, shared equally by its top nodes. `on_row` reports progress.
+/// force, shared equally by its top nodes. FEBio's solution (16^3) is a row of its own, with
+/// the wall time cases.json records. `on_row` reports progress.
 std::vector<SweepRow> run_sweep(const FebioReference& reference, const FebioCase& c,
                                 const SweepSettings& settings,
                                 const std::function<void(const SweepRow&)>& on_row = {});
 
 std::string sweep_csv(const std::vector<SweepRow>& rows);
 std::string sweep_table(const std::vector<SweepRow>& rows);
-/// Error against the finest solution over wall time, one series per family and solver.
+/// Error against the finest solution over wall time, one series per family and solver, and
+/// FEBio's point.
 PlotSpec sweep_plot(const std::vector<SweepRow>& rows, const std::string& case_name);
 
 } // namespace ligsim::sim

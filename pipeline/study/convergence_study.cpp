@@ -1,0 +1,379 @@
+#include "pipeline/study/convergence_study.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
+#include "pipeline/study/csv_text.hpp"
+#include "pipeline/study/run_errors.hpp"
+#include "pipeline/study/study_plot.hpp"
+#include "pipeline/study/study_runs.hpp"
+#include "stages/geometry/surface_topology.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+
+namespace ligsim::study {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// The paper's interactive rate (sec. 5.2: 15 frames per second for 5,911 tets).
+constexpr double kPaperFramesPerSecond = 15.0;
+
+struct RunSpec {
+  std::string family;
+  double mesh_scale = 1.0;
+  double voxel_scale = 1.0;
+  double time_step_s = 0.0; ///< 0: quasi-static
+};
+
+struct Run {
+  RunSpec spec;
+  BuiltModel model;
+  FlexionFigures flexion;
+  std::string failure; ///< empty when the run reached every angle
+  std::array<double, 4> worst_vs_reference{};
+  std::array<double, 4> worst_vs_family{};
+  double energy_error_vs_extrapolated = kNaN;
+  std::vector<AngleErrors> errors;
+};
+
+std::string model_name(double mesh_scale, double voxel_scale)
+{
+  return fmt::format("mesh{:g}-voxel{:g}", mesh_scale, voxel_scale);
+}
+
+/// The config's sizes times the scales; a size the config leaves at 0 starts from the build's
+/// default (mesh h/2, facet distance h/20, voxel h/8).
+pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double thickness_mm,
+                                    double mesh_scale, double voxel_scale)
+{
+  auto scaled = [](double value, double fallback, double scale) {
+    return scale * (value > 0.0 ? value : fallback);
+  };
+  pipeline::BuildConfig config = base;
+  config.tetmesh.cell_size_mm = scaled(base.tetmesh.cell_size_mm, thickness_mm / 2.0, mesh_scale);
+  config.tetmesh.facet_size_mm = scaled(base.tetmesh.facet_size_mm, thickness_mm / 2.0, mesh_scale);
+  config.tetmesh.facet_distance_mm =
+      scaled(base.tetmesh.facet_distance_mm, thickness_mm / 20.0, mesh_scale);
+  config.voxelize.spacing_mm = scaled(base.voxelize.spacing_mm, thickness_mm / 8.0, voxel_scale);
+  return config;
+}
+
+/// Seconds of solve per displayed frame: an implicit Euler frame, or one angle's equilibrium.
+double seconds_per_frame(const Run& run)
+{
+  if (run.flexion.frames_per_second > 0.0)
+    return 1.0 / run.flexion.frames_per_second;
+  return run.flexion.frames > 0 ? run.flexion.solve_s / run.flexion.frames : kNaN;
+}
+
+std::string percent(double fraction)
+{
+  return std::isfinite(fraction) ? fmt::format("{:.3g} %", 100.0 * fraction) : "";
+}
+
+/// Energy at each angle extrapolated from the three finest meshes where monotone.
+std::map<double, double> extrapolated_energy(const std::vector<const Run*>& mesh_runs,
+                                             nlohmann::json& report)
+{
+  std::map<double, double> energies;
+  if (mesh_runs.size() < 3)
+    return energies;
+  const std::size_t n = mesh_runs.size();
+  const std::array<const Run*, 3> finest = {mesh_runs[n - 3], mesh_runs[n - 2], mesh_runs[n - 1]};
+  std::array<double, 3> h{};
+  for (std::size_t i = 0; i < 3; ++i)
+    h[i] = std::cbrt(1.0 / std::max(finest[i]->flexion.tets, 1)); // tet size up to a constant
+  nlohmann::json orders = nlohmann::json::array();
+  for (const AngleFigures& angle : finest[2]->flexion.angles) {
+    std::array<double, 3> f{};
+    bool all = true;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto& angles = finest[i]->flexion.angles;
+      const auto match = std::find_if(angles.begin(), angles.end(), [&](const AngleFigures& a) {
+        return std::abs(a.angle_deg - angle.angle_deg) < 1e-9;
+      });
+      all = all && match != angles.end();
+      if (match != angles.end())
+        f[i] = match->strain_energy_mj;
+    }
+    const std::optional<Extrapolation> e = all ? richardson(h, f) : std::nullopt;
+    nlohmann::json entry = {{"angle_deg", angle.angle_deg}, {"monotone", e.has_value()}};
+    if (e) {
+      energies[angle.angle_deg] = e->value;
+      entry.update({{"energy_mj", e->value},
+                    {"order", e->order},
+                    {"finest_error_pct", 100.0 * std::abs(f[2] - e->value) / std::abs(e->value)}});
+    }
+    orders.push_back(entry);
+  }
+  report["richardson_energy"] = orders;
+  return energies;
+}
+
+void write_tables(const std::vector<Run>& runs, const fs::path& out, const std::string& reference)
+{
+  std::string csv = "family,mesh_scale,voxel_scale,mode,time_step_s,tets,build_s,build_peak_mib,"
+                    "solve_s,solve_peak_mib,frames,s_per_frame,frames_per_second,"
+                    "energy_error,mean_strain_error,p95_strain_error,femur_force_error,"
+                    "energy_error_vs_family,mean_strain_error_vs_family,"
+                    "p95_strain_error_vs_family,femur_force_error_vs_family,"
+                    "energy_error_vs_extrapolated,failure\n";
+  std::string angles_csv = "family,mesh_scale,voxel_scale,time_step_s,tets,angle_deg,"
+                           "strain_energy_mj,mean_fiber_stretch,p95_fiber_stretch,"
+                           "max_fiber_stretch,femur_force_n,energy_error,mean_strain_error,"
+                           "p95_strain_error,femur_force_error\n";
+  std::string md = fmt::format(
+      "Errors: the largest over the angles, relative to the reference ({}); fiber errors "
+      "compare strains (stretch - 1), the force compares vectors. Time per frame: one implicit "
+      "Euler frame, or one angle's equilibrium (quasi-static). The paper: 15 frames per second "
+      "(0.067 s per frame) for 5,911 tets. No contact (the ligament may pass through the "
+      "bones).\n\n"
+      "| family | tets | voxel scale | dt s | build s | solve s | s per frame | peak MiB | "
+      "energy | mean strain | p95 strain | femur force | energy vs Richardson |\n"
+      "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+      "|\n",
+      reference);
+  for (const Run& run : runs) {
+    const bool interactive = run.spec.time_step_s > 0.0;
+    const auto& r = run.worst_vs_reference;
+    const auto& f = run.worst_vs_family;
+    csv += fmt::format(
+        "{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:."
+        "6g},{:.6g},{:.6g},"
+        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
+        csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
+        interactive ? "interactive" : "static", run.spec.time_step_s, run.flexion.tets,
+        run.model.build_s, run.model.peak_rss_mib, run.flexion.solve_s, run.flexion.peak_rss_mib,
+        run.flexion.frames, seconds_per_frame(run), run.flexion.frames_per_second, r[0], r[1], r[2],
+        r[3], f[0], f[1], f[2], f[3], run.energy_error_vs_extrapolated, csv_quoted(run.failure));
+    for (const AngleFigures& a : run.flexion.angles) {
+      std::array<double, 4> e;
+      e.fill(kNaN);
+      for (const AngleErrors& row : run.errors)
+        if (std::abs(row.angle_deg - a.angle_deg) < 1e-9)
+          e = row.error;
+      angles_csv +=
+          fmt::format("{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                      "{:.6g},{:.6g}\n",
+                      csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
+                      run.spec.time_step_s, run.flexion.tets, a.angle_deg, a.strain_energy_mj,
+                      a.mean_fiber_stretch, a.p95_fiber_stretch, a.max_fiber_stretch,
+                      a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
+    }
+    md += fmt::format(
+        "| {} | {} | {:g} | {} | {:.2f} | {:.2f} | {:.4f} | {:.0f} | {} | {} | {} | "
+        "{} | {} |\n",
+        run.spec.family + (run.failure.empty() ? "" : " (failed)"), run.flexion.tets,
+        run.spec.voxel_scale, interactive ? fmt::format("{:g}", run.spec.time_step_s) : "",
+        run.model.build_s, run.flexion.solve_s, seconds_per_frame(run),
+        std::max(run.model.peak_rss_mib, run.flexion.peak_rss_mib), percent(r[0]), percent(r[1]),
+        percent(r[2]), percent(r[3]), percent(run.energy_error_vs_extrapolated));
+  }
+  write_text_atomically(out / "convergence.csv", csv);
+  write_text_atomically(out / "convergence_angles.csv", angles_csv);
+  write_text_atomically(out / "convergence.md", md);
+}
+
+void write_convergence_plot(const std::vector<Run>& runs, const fs::path& out, bool png)
+{
+  PlotSpec spec;
+  spec.title = "Knee flexion: error against run time";
+  spec.x_label = "solve time per frame (s)";
+  spec.y_label = "largest strain energy error over the angles (%)";
+  spec.log_x = true;
+  spec.log_y = true;
+  std::map<std::string, PlotSeries> families;
+  std::vector<std::string> order;
+  double low = INFINITY, high = 0.0;
+  for (const Run& run : runs) {
+    if (!run.failure.empty())
+      continue;
+    if (!families.count(run.spec.family))
+      order.push_back(run.spec.family);
+    PlotSeries& series = families[run.spec.family];
+    series.name = run.spec.family;
+    const double error = 100.0 * run.worst_vs_reference[0];
+    series.x.push_back(seconds_per_frame(run));
+    series.y.push_back(error);
+    series.point_labels.push_back(fmt::format("{}", run.flexion.tets));
+    if (std::isfinite(error) && error > 0.0) {
+      low = std::min(low, error);
+      high = std::max(high, error);
+    }
+  }
+  for (const std::string& name : order) {
+    PlotSeries& s = families[name];
+    // Sorted by time, so that a curve runs left to right.
+    std::vector<std::size_t> idx(s.x.size());
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      idx[i] = i;
+    std::sort(idx.begin(), idx.end(),
+              [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
+    PlotSeries sorted;
+    sorted.name = s.name;
+    for (std::size_t i : idx) {
+      sorted.x.push_back(s.x[i]);
+      sorted.y.push_back(s.y[i]);
+      sorted.point_labels.push_back(s.point_labels[i]);
+    }
+    spec.series.push_back(sorted);
+  }
+  if (std::isfinite(low)) {
+    PlotSeries paper;
+    paper.name = "paper: 15 frames per second (0.067 s per frame)";
+    paper.x = {1.0 / kPaperFramesPerSecond, 1.0 / kPaperFramesPerSecond};
+    paper.y = {low / 2.0, high * 2.0};
+    spec.series.push_back(paper);
+  }
+  write_plot(spec, out / "convergence", png);
+}
+
+} // namespace
+
+double ligament_thickness_mm(const pipeline::BuildConfig& config)
+{
+  const TriangleSurface surface = pipeline::load_ligament(config);
+  return 2.0 * std::abs(signed_volume(surface)) / surface_area(surface);
+}
+
+nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
+{
+  const ConvergenceLadder& ladder = inputs.ladder;
+  if (ladder.mesh_scales.empty())
+    fail("study convergence: the mesh ladder is empty");
+  const double thickness = ligament_thickness_mm(inputs.build);
+  std::vector<double> mesh_scales = ladder.mesh_scales;
+  std::sort(mesh_scales.rbegin(), mesh_scales.rend()); // coarse to fine
+  std::vector<double> voxel_scales = ladder.voxel_scales;
+  std::sort(voxel_scales.rbegin(), voxel_scales.rend());
+  const double finest_mesh = mesh_scales.back();
+
+  std::vector<RunSpec> specs;
+  for (double s : mesh_scales)
+    specs.push_back({"quasi-static, mesh", s, 1.0, 0.0});
+  for (double v : voxel_scales)
+    specs.push_back({"quasi-static, voxel", ladder.voxel_mesh_scale, v, 0.0});
+  for (double s : ladder.interactive_mesh_scales) {
+    std::vector<double> steps = ladder.time_steps_s;
+    std::sort(steps.rbegin(), steps.rend());
+    for (double dt : steps)
+      specs.push_back({fmt::format("interactive, mesh x{:g}", s), s, 1.0, dt});
+  }
+
+  // One model per (mesh, voxel) and one flexion per (model, mode, dt): shared between families.
+  std::map<std::string, BuiltModel> models;
+  std::map<std::string, std::pair<FlexionFigures, std::string>> sweeps;
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const RunSpec& spec = specs[i];
+    Run run;
+    run.spec = spec;
+    const std::string name = model_name(spec.mesh_scale, spec.voxel_scale);
+    const std::string sweep_key = fmt::format("{}-{:g}", name, spec.time_step_s);
+    log_info(fmt::format("study convergence: run {} of {}: {} ({}{})", i + 1, specs.size(),
+                         spec.family, name,
+                         spec.time_step_s > 0 ? fmt::format(", dt {:g} s", spec.time_step_s) : ""));
+    try {
+      if (!models.count(name))
+        models[name] =
+            build_model(scaled_config(inputs.build, thickness, spec.mesh_scale, spec.voxel_scale),
+                        inputs.out / "models" / name);
+      run.model = models[name];
+      if (!sweeps.count(sweep_key)) {
+        sim::FlexionSettings settings = inputs.flexion;
+        settings.model_dir = run.model.dir;
+        settings.images = false;
+        if (spec.time_step_s > 0.0) {
+          settings.mode = sim::FlexionMode::interactive;
+          settings.interactive.time_step_s = spec.time_step_s;
+        } else {
+          settings.mode = sim::FlexionMode::quasi_static;
+        }
+        FlexionFigures figures = run_flexion(settings);
+        sweeps[sweep_key] = {figures, figures.success ? "" : figures.failure};
+      }
+      run.flexion = sweeps[sweep_key].first;
+      run.failure = sweeps[sweep_key].second;
+    } catch (const Error& e) {
+      run.failure = e.what();
+    }
+    if (!run.failure.empty())
+      log_info(fmt::format("study convergence: {} failed: {}", name, run.failure));
+    runs.push_back(run);
+  }
+
+  // The reference: the finest quasi-static mesh.
+  const std::string reference_key = model_name(finest_mesh, 1.0) + "-0";
+  if (!sweeps.count(reference_key) || !sweeps[reference_key].second.empty())
+    fail<SolverError>("study convergence: the reference run ({}) failed: {}", reference_key,
+                      sweeps.count(reference_key) ? sweeps[reference_key].second : "not run");
+  const FlexionFigures& reference = sweeps[reference_key].first;
+  const auto finest_voxel =
+      sweeps.find(model_name(1.0, voxel_scales.empty() ? 1.0 : voxel_scales.back()) + "-0");
+
+  nlohmann::json report;
+  std::vector<const Run*> mesh_runs;
+  for (const Run& run : runs)
+    if (run.spec.family == "quasi-static, mesh" && run.failure.empty())
+      mesh_runs.push_back(&run);
+  const std::map<double, double> extrapolated = extrapolated_energy(mesh_runs, report);
+
+  for (Run& run : runs) {
+    run.errors = angle_errors(run.flexion, reference);
+    run.worst_vs_reference = worst_errors(run.errors);
+    // The family's own reference isolates its parameter: the finest voxel at the same mesh, the
+    // quasi-static run on the same mesh for the interactive runs.
+    const FlexionFigures* family = &reference;
+    if (run.spec.family == "quasi-static, voxel")
+      family = finest_voxel != sweeps.end() ? &finest_voxel->second.first : nullptr;
+    else if (run.spec.time_step_s > 0.0) {
+      const auto own = sweeps.find(model_name(run.spec.mesh_scale, 1.0) + "-0");
+      family = own != sweeps.end() ? &own->second.first : nullptr;
+    }
+    run.worst_vs_family.fill(kNaN);
+    if (family)
+      run.worst_vs_family = worst_errors(angle_errors(run.flexion, *family));
+    if (!extrapolated.empty() && run.failure.empty()) {
+      double worst = 0.0;
+      for (const AngleFigures& a : run.flexion.angles)
+        if (const auto e = extrapolated.find(a.angle_deg); e != extrapolated.end())
+          worst = std::max(worst, std::abs(a.strain_energy_mj - e->second) / std::abs(e->second));
+      run.energy_error_vs_extrapolated = worst;
+    }
+  }
+
+  const std::string reference_text = fmt::format("quasi-static, {} tets", reference.tets);
+  write_tables(runs, inputs.out, reference_text);
+  write_convergence_plot(runs, inputs.out, inputs.png);
+
+  report["reference"] = {{"tets", reference.tets}, {"model", reference_key}};
+  report["thickness_mm"] = thickness;
+  nlohmann::json entries = nlohmann::json::array();
+  for (const Run& run : runs)
+    entries.push_back({{"family", run.spec.family},
+                       {"mesh_scale", run.spec.mesh_scale},
+                       {"voxel_scale", run.spec.voxel_scale},
+                       {"time_step_s", run.spec.time_step_s},
+                       {"tets", run.flexion.tets},
+                       {"build_s", run.model.build_s},
+                       {"solve_s", run.flexion.solve_s},
+                       {"seconds_per_frame", seconds_per_frame(run)},
+                       {"peak_rss_mib", std::max(run.model.peak_rss_mib, run.flexion.peak_rss_mib)},
+                       {"energy_error", run.worst_vs_reference[0]},
+                       {"femur_force_error", run.worst_vs_reference[3]},
+                       {"failure", run.failure}});
+  report["runs"] = entries;
+  return report;
+}
+
+} // namespace ligsim::study
