@@ -32,9 +32,11 @@ inline CliResult run_ligsim(const std::string& arguments)
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
 }
 
+/// An empty folder of its own: the process id keeps suites of several checkouts run at once apart.
 inline std::filesystem::path fresh_folder(const std::string& name)
 {
-  const auto dir = std::filesystem::temp_directory_path() / ("ligsim_pipeline_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("ligsim_pipeline_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   return dir;
 }
