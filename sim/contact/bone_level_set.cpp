@@ -152,7 +152,9 @@ std::unique_ptr<BoneLevelSet> BoneLevelSet::cached(const TriangleSurface& surfac
 
 DistanceSample BoneLevelSet::sample(const Eigen::Vector3d& p_mm, bool with_hessian) const
 {
-  const openvdb::FloatGrid::ConstAccessor access = m_grid->grid->getConstAccessor();
+  // Not registered with the tree (no lock, no hash map): the grid never changes after it is
+  // built.
+  openvdb::tree::ValueAccessor<const openvdb::FloatTree, false> access(m_grid->grid->tree());
   const Eigen::Vector3d u = p_mm / m_voxel_mm; // voxel centres at integer coordinates
   int base[3];
   Weights weights[3];

@@ -60,8 +60,10 @@ ContactPotential::ContactPotential(int node_count, const ContactSurface& surface
       if (!excluded[static_cast<std::size_t>(n)])
         pairs.push_back({n, areas_mm2(static_cast<Eigen::Index>(i))});
     }
+    m_state.emplace_back(pairs.size());
     m_pairs.push_back(std::move(pairs));
   }
+  m_slack_mm = settings.d_hat_mm;
 }
 
 ContactPotential::Pose ContactPotential::pose(std::size_t o, double t) const
@@ -85,6 +87,27 @@ bool ContactPotential::surely_farther(std::size_t o, const Eigen::Vector3d& p, d
   return field.distance_bound(p) > far;
 }
 
+bool ContactPotential::maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const
+{
+  PairState& state = m_state[o][i];
+  if ((p - state.p0).squaredNorm() > 0.25 * m_slack_mm * m_slack_mm) {
+    state.p0 = p;
+    state.near = !surely_farther(o, p, m_settings.d_hat_mm + m_slack_mm);
+  }
+  return state.near;
+}
+
+const DistanceSample& ContactPotential::pair_sample(std::size_t o, std::size_t i,
+                                                    const Eigen::Vector3d& p) const
+{
+  PairState& state = m_state[o][i];
+  if (p != state.sampled_at) {
+    state.sample = m_obstacles[o].field->sample(p, true);
+    state.sampled_at = p;
+  }
+  return state.sample;
+}
+
 double ContactPotential::distance(std::size_t o, const Eigen::Vector3d& p, double t) const
 {
   return m_obstacles[o].field->sample(pose(o, t).to_local(p), false).distance_mm;
@@ -97,11 +120,12 @@ double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::Vecto
   double total = 0.0;
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
-    for (const Pair& pair : m_pairs[o]) {
+    for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
+      const Pair& pair = m_pairs[o][i];
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      if (surely_farther(o, p, d_hat))
+      if (!maybe_near(o, i, p))
         continue;
-      const DistanceSample s = m_obstacles[o].field->sample(p, false);
+      const DistanceSample& s = pair_sample(o, i, p);
       const BarrierValue b = ipc_barrier(s.distance_mm, d_hat);
       if (!std::isfinite(b.value))
         return INFINITY;
@@ -121,11 +145,12 @@ void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool pr
   const double kappa = m_settings.stiffness_mpa_per_mm;
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
-    for (const Pair& pair : m_pairs[o]) {
+    for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
+      const Pair& pair = m_pairs[o][i];
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      if (surely_farther(o, p, d_hat))
+      if (!maybe_near(o, i, p))
         continue;
-      const DistanceSample s = m_obstacles[o].field->sample(p, true);
+      const DistanceSample& s = pair_sample(o, i, p);
       const BarrierValue b = ipc_barrier(s.distance_mm, d_hat);
       if (b.second == 0.0 && b.first == 0.0)
         continue;
@@ -156,16 +181,21 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
     const Pose at = pose(o, t);
     const DistanceField& field = *m_obstacles[o].field;
     const double lipschitz = field.lipschitz();
-    for (const Pair& pair : m_pairs[o]) {
+    // A pair that is not near is at least d_hat + slack / 2 away.
+    const double far_gap = m_settings.d_hat_mm + 0.5 * m_slack_mm;
+    for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
+      const Pair& pair = m_pairs[o][i];
       const Eigen::Vector3d move = at.rotation.transpose() * dx.segment<3>(3 * pair.node);
       const double length = lipschitz * move.norm();
       if (length == 0.0)
         continue;
       const Eigen::Vector3d p0 = at.to_local(x.segment<3>(3 * pair.node));
       // Far enough to move the whole step: no sample needed.
-      if (surely_farther(o, p0, length / (1.0 - closing_fraction)))
+      if (length <= closing_fraction * far_gap && !maybe_near(o, i, p0))
         continue;
-      const double d0 = field.sample(p0, false).distance_mm;
+      if (surely_farther(o, p0, length / closing_fraction))
+        continue;
+      const double d0 = pair_sample(o, i, p0).distance_mm;
       const double keep = (1.0 - closing_fraction) * d0; // the gap never closes below this
       // Conservative advancement: a field with |grad| <= L lets the node move (d - keep) / L.
       double alpha = 0.0;
@@ -199,11 +229,12 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
     const DistanceField& field = *m_obstacles[o].field;
-    for (const Pair& pair : m_pairs[o]) {
+    for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
+      const Pair& pair = m_pairs[o][i];
       Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      if (surely_farther(o, p, push_threshold * d_hat))
+      if (!maybe_near(o, i, p))
         continue;
-      DistanceSample s = field.sample(p, false);
+      DistanceSample s = pair_sample(o, i, p);
       if (s.distance_mm > push_threshold * d_hat)
         continue;
       // Newton on d(p) = pushed_gap d_hat along the gradient.

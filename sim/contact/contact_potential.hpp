@@ -10,6 +10,7 @@
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/extra_potential.hpp"
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,7 @@ struct ContactMeasures {
   Eigen::VectorXd pressure_mpa;         ///< per mesh node: contact force / area
 };
 
+/// Not thread-safe: it caches which nodes are near each obstacle.
 class ContactPotential final : public ExtraPotential {
 public:
   /// `surface`: the candidate nodes (mesh indices) with their areas, and the faces the contact
@@ -80,13 +82,30 @@ private:
     int node = 0;
     double area = 0.0;
   };
+  /// Where a pair was last classified (local point) and whether it was near then.
+  struct PairState {
+    Eigen::Vector3d p0 = Eigen::Vector3d::Constant(INFINITY);
+    bool near = true;
+    Eigen::Vector3d sampled_at = Eigen::Vector3d::Constant(INFINITY);
+    DistanceSample sample; ///< at `sampled_at`, with the Hessian
+  };
   Pose pose(std::size_t o, double t) const;
   /// Whether a node at local point p (rest frame of obstacle o) is surely farther than `far`.
   bool surely_farther(std::size_t o, const Eigen::Vector3d& p, double far) const;
+  /// Whether pair i of obstacle o, now at local point p, may be within d_hat. A pair found
+  /// farther than d_hat + slack is not looked up again until it moved by slack / 2 relative to
+  /// the obstacle: the cheap cull that makes far nodes cost a subtraction.
+  bool maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+  /// The field at local point p for pair i of obstacle o, reused when p has not moved (energy,
+  /// gradient and Hessian of one state sample once).
+  const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
 
   int m_node_count = 0;
   std::vector<ContactObstacle> m_obstacles;
   std::vector<std::vector<Pair>> m_pairs; ///< per obstacle
+  /// Per obstacle and pair (a cache: calls must not run concurrently).
+  mutable std::vector<std::vector<PairState>> m_state;
+  double m_slack_mm = 0.0;
   ContactSettings m_settings;
   Triangles m_faces;
 };
