@@ -227,18 +227,22 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
 {
   if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
     return false;
-  if (m_extra)
-    m_extra->make_admissible(x, t1);
+  const int pushed = m_extra ? m_extra->make_admissible(x, t1) : 0;
 
   const auto& free_dofs = m_dofs.free_dofs();
   Evaluation current;
   evaluate(x, t1, current);
   if (!std::isfinite(current.body.energy)) {
     m_failure = describe_inversion(current.body);
+    if (pushed > 0)
+      m_failure = fmt::format("moving {} nodes out of a contact obstacle: {} (they started too "
+                              "deep inside it)",
+                              pushed, m_failure);
     return false;
   }
   if (current.extra_inadmissible) {
-    m_failure = "a node lies inside a contact obstacle and could not be moved out";
+    m_failure = "a node lies inside a contact obstacle, too deep to be moved out (beyond the "
+                "obstacle's distance band)";
     return false;
   }
   double first_energy_change = 0.0;

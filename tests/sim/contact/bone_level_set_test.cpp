@@ -1,6 +1,6 @@
 #include "sim/contact/bone_level_set.hpp"
 
-#include "tests/sim/contact/sphere_surface.hpp"
+#include "sim/mesh/sphere_surface.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ TEST(BoneLevelSet, DistanceOfASphereWithinTheBand)
 {
   const Eigen::Vector3d centre(1.0, -2.0, 0.5);
   const double radius = 4.0;
-  const BoneLevelSet grid(test::sphere_surface(centre, radius, 5), {0.2, 1.0});
+  const BoneLevelSet grid(sphere_surface(centre, radius, 5), {0.2, 1.0});
   std::mt19937 random(1);
   std::uniform_real_distribution<double> offset(-0.9, 0.9);
   double worst = 0.0;
@@ -39,7 +39,7 @@ TEST(BoneLevelSet, CacheIsReusedForTheSameSurfaceAndRebuiltOtherwise)
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "ligsim_level_set_cache_test";
   std::filesystem::remove_all(dir);
-  const auto sphere = test::sphere_surface({0, 0, 0}, 3.0, 3);
+  const auto sphere = sphere_surface({0, 0, 0}, 3.0, 3);
   const auto first = BoneLevelSet::cached(sphere, {0.25, 0.75}, dir / "bone.vdb");
   EXPECT_FALSE(first->figures().reused);
   const auto second = BoneLevelSet::cached(sphere, {0.25, 0.75}, dir / "bone.vdb");

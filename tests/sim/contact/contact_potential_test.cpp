@@ -1,7 +1,7 @@
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/contact_potential.hpp"
 
-#include "tests/sim/contact/sphere_surface.hpp"
+#include "sim/mesh/sphere_surface.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -104,7 +104,7 @@ TEST(ContactPotential, ExactGradientAndHessianOnACylinder)
 
 TEST(ContactPotential, ExactGradientAndHessianOnALevelSet)
 {
-  const BoneLevelSet sphere(test::sphere_surface({0.2, 0.1, -0.3}, 2.5, 4), {0.2, 1.0});
+  const BoneLevelSet sphere(sphere_surface({0.2, 0.1, -0.3}, 2.5, 4), {0.2, 1.0});
   expect_exact_derivatives(sphere, 1e-5);
 }
 

@@ -1,15 +1,14 @@
-#pragma once
-/// A closed triangulated sphere (subdivided icosahedron) for the contact tests.
+#include "sim/mesh/sphere_surface.hpp"
 
-#include "common/mesh.hpp"
-
+#include <array>
+#include <cmath>
 #include <map>
 #include <utility>
 #include <vector>
 
-namespace ligsim::sim::test {
+namespace ligsim::sim {
 
-inline TriangleSurface sphere_surface(const Eigen::Vector3d& centre, double radius, int levels)
+TriangleSurface sphere_surface(const Eigen::Vector3d& centre, double radius, int levels)
 {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
@@ -52,4 +51,4 @@ inline TriangleSurface sphere_surface(const Eigen::Vector3d& centre, double radi
   return s;
 }
 
-} // namespace ligsim::sim::test
+} // namespace ligsim::sim
