@@ -202,7 +202,7 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
       double d = d0;
       for (int k = 0; k < 50 && alpha < bound; ++k) {
         const double step = (d - keep) / length;
-        if (step <= 1e-6 * bound)
+        if (d - keep <= 1e-6 * d0) // no room left to move
           break;
         double next = std::min(bound, alpha + step);
         double d_next = field.sample(p0 + next * move, false).distance_mm;

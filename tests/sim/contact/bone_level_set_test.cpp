@@ -50,3 +50,28 @@ TEST(BoneLevelSet, CacheIsReusedForTheSameSurfaceAndRebuiltOtherwise)
   EXPECT_FALSE(other->figures().reused);
   std::filesystem::remove_all(dir);
 }
+
+TEST(BoneLevelSet, AnOpenSurfaceGivesAnUnsignedDistance)
+{
+  // A sphere with a hole at the top: the sign's flood fill leaks through the hole, so both sides
+  // of the sheet count as outside. The distance to the sheet stays right, so the barrier still
+  // keeps nodes from crossing it (from either side), but nothing is inside any more.
+  const ligsim::TriangleSurface closed = sphere_surface({0, 0, 0}, 3.0, 4);
+  ligsim::TriangleSurface open;
+  open.V = closed.V;
+  std::vector<int> kept;
+  for (Eigen::Index f = 0; f < closed.F.rows(); ++f)
+    if (closed.V(closed.F(f, 0), 2) < 2.5 && closed.V(closed.F(f, 1), 2) < 2.5 &&
+        closed.V(closed.F(f, 2), 2) < 2.5)
+      kept.push_back(static_cast<int>(f));
+  open.F.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    open.F.row(static_cast<Eigen::Index>(i)) = closed.F.row(kept[i]);
+  const BoneLevelSet grid(open, {0.2, 1.0});
+  EXPECT_NEAR(grid.sample({0, 0, -3.2}, false).distance_mm, 0.2, 0.01); // outside
+  EXPECT_NEAR(grid.sample({0, 0, -2.8}, false).distance_mm, 0.2, 0.01); // inside, yet positive
+  EXPECT_NEAR(grid.sample({2.8, 0, 0}, false).distance_mm, 0.2, 0.01);  // inside, yet positive
+  EXPECT_GT(grid.sample({0, 0, 0}, false).distance_mm, 1.0);            // the centre: far outside
+  // The closed sphere keeps its inside.
+  EXPECT_NEAR(BoneLevelSet(closed, {0.2, 1.0}).sample({0, 0, -2.8}, false).distance_mm, -0.2, 0.01);
+}

@@ -127,6 +127,59 @@ TEST(ContactSolvers, BlockPressedOnAPlaneFeelsTheLoadAsReaction)
   EXPECT_NEAR(measures.area_mm2[0], bottom_area, 1e-12);
 }
 
+TEST(ContactSolvers, ImplicitEulerFramesNeverCrossThePlaneAndComeToRestOnIt)
+{
+  ligsim::TetMesh mesh = structured_box_mesh({4, 4, 2}, {2.0, 2.0, 1.0});
+  mesh.V.col(2).array() += 1.0; // beyond d_hat: nothing resists the first frame's fall
+  const HyperelasticBody body(mesh, ground_substance(), no_fibers());
+  BoundaryConditions conditions;
+  ConstraintSet x_symmetry{"x0",
+                           nodes_on_plane(mesh.V, 0, 0.0, 1e-9),
+                           {true, false, false},
+                           Eigen::Vector3d::Zero(),
+                           std::nullopt};
+  ConstraintSet y_symmetry{"y0",
+                           nodes_on_plane(mesh.V, 1, 0.0, 1e-9),
+                           {false, true, false},
+                           Eigen::Vector3d::Zero(),
+                           std::nullopt};
+  conditions.constraints = {x_symmetry, y_symmetry};
+  NodalLoad load{"top", nodes_on_plane(mesh.V, 2, 2.0, 1e-9), Eigen::Vector3d::Zero()};
+  const double total_n = 100.0;
+  load.force_per_node_n = Eigen::Vector3d(0, 0, -total_n / static_cast<double>(load.nodes.size()));
+  conditions.loads = {load};
+  const PlaneDistance plane({0.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
+  ContactSettings settings;
+  settings.d_hat_mm = 0.3;
+  const ContactPotential contact =
+      boundary_contact(mesh, conditions, {{"plane", &plane, std::nullopt, {}}}, settings);
+
+  // The whole load in the first frame: a hard hit that the step bound must stop short.
+  DynamicsSettings dynamics;
+  dynamics.time_step_s = 0.01;
+  dynamics.frames = 2000;
+  dynamics.ramp_frames = 1;
+  dynamics.until_converged = true;
+  dynamics.convergence_tolerance = 1e-7;
+  dynamics.density_kg_m3 = 1100.0;
+  dynamics.mass_damping_per_s = 10.0;
+  dynamics.linear_solver = LinearSolverKind::direct;
+  ImplicitEuler solver(body, conditions, dynamics);
+  solver.set_extra_potential(&contact);
+  Eigen::VectorXd x = body.rest_positions();
+  double lowest = INFINITY;
+  const DynamicResult result =
+      solver.run(x, [&](const FrameReport&, const Eigen::VectorXd& state, const Eigen::VectorXd&) {
+        for (Eigen::Index n = 0; n < state.size() / 3; ++n)
+          lowest = std::min(lowest, state(3 * n + 2));
+      });
+  ASSERT_TRUE(result.completed) << result.failure;
+  EXPECT_GT(result.frames, 3); // the first frame stops at 80 % of the gap, then it settles
+  EXPECT_GT(lowest, 0.0);
+  const ContactMeasures measures = contact.measure(x, 1.0);
+  EXPECT_NEAR(measures.force_n[0].z(), total_n, 1e-5 * total_n);
+}
+
 TEST(ContactSolvers, BandPulledOverACylinderBalancesItsEndTensions)
 {
   // A 20 x 2 x 0.5 mm band on top of a level set of a capped cylinder of radius 3 mm (axis y),
