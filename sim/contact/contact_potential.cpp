@@ -15,9 +15,9 @@ namespace {
 
 /// A step may close at most this fraction of a node's gap (IPC's conservative advancement).
 constexpr double closing_fraction = 0.8;
-/// Nodes found closer than this fraction of d_hat after an obstacle moved are pushed out to
-/// `pushed_gap` d_hat.
-constexpr double push_threshold = 1e-3;
+/// Nodes found inside an obstacle (or on it) after it moved are pushed out to `pushed_gap` d_hat.
+/// Nodes still outside, however close, are left to the barrier: pushing them would only deform
+/// elements that may already be thin.
 constexpr double pushed_gap = 0.1;
 
 void project_to_psd(Eigen::Matrix3d& block)
@@ -235,7 +235,7 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
       if (!maybe_near(o, i, p))
         continue;
       DistanceSample s = pair_sample(o, i, p);
-      if (s.distance_mm > push_threshold * d_hat)
+      if (s.distance_mm > 0.0)
         continue;
       // Newton on d(p) = pushed_gap d_hat along the gradient.
       for (int k = 0; k < 10 && s.distance_mm < 0.5 * pushed_gap * d_hat; ++k) {
