@@ -37,6 +37,7 @@ struct FlexionOptions {
   std::optional<double> in_situ_strain;
   std::optional<double> speed;
   std::optional<double> time_step;
+  std::string contact; ///< "on", "off" or "" (the config's, by default on)
   bool no_images = false;
 };
 
@@ -74,6 +75,8 @@ sim::FlexionSettings settings_from(const FlexionOptions& options)
     settings.interactive.time_step_s = *options.time_step;
   if (options.no_images)
     settings.images = false;
+  if (!options.contact.empty())
+    settings.contact.enabled = options.contact == "on";
   sim::validate(settings);
   return settings;
 }
@@ -98,7 +101,18 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::Resolved
                             {"lambda_star", m.fiber->lambda_star},
                             {"convention", to_string(m.fiber->convention)}};
   parameters["in_situ_strain"] = settings.in_situ_strain;
-  parameters["contact"] = "none: the ligament may pass through the bones";
+  const sim::ContactConfig& contact = settings.contact;
+  if (contact.enabled.value_or(true))
+    parameters["contact"] = {
+        {"model", "IPC barrier on the ligament's free surface nodes, frictionless"},
+        {"bones",
+         contact.bones.empty() ? std::vector<std::string>{"femur", "tibia"} : contact.bones},
+        {"d_hat_mm", contact.barrier.d_hat_mm},
+        {"stiffness_mpa_per_mm", contact.barrier.stiffness_mpa_per_mm},
+        {"voxel_mm", contact.grid.voxel_mm},
+        {"band_mm", contact.grid.band_mm}};
+  else
+    parameters["contact"] = "off: the ligament may pass through the bones";
   if (settings.mode == sim::FlexionMode::quasi_static)
     parameters["static"] = {{"residual_tolerance", settings.newton.residual_tolerance},
                             {"max_iterations", settings.newton.max_iterations},
@@ -127,6 +141,9 @@ void run_flexion(const FlexionOptions& options)
                                    sim::prestretched_fibers(model, settings.in_situ_strain));
   const sim::BoundaryConditions conditions =
       sim::knee_conditions(model, axis.axis, settings.angles_deg.back());
+  // Built with contact off as well: it measures how deep the ligament goes into the bones.
+  const sim::KneeContact contact(model, conditions, settings.contact,
+                                 settings.model_dir / "contact");
   // Before anything is written: a display for the pictures, or the reason there is none.
   std::optional<sim::OffscreenDisplay> display;
   if (settings.images)
@@ -136,18 +153,21 @@ void run_flexion(const FlexionOptions& options)
                      {"tets", body.element_count()},
                      {"femur_nodes", model.femur_nodes.size()},
                      {"tibia_nodes", model.tibia_nodes.size()},
-                     {"rest_volume_mm3", body.rest_volume()}});
+                     {"rest_volume_mm3", body.rest_volume()},
+                     {"contact", contact.figures()}});
 
   ensure_directory(options.out);
   sim::FlexionOutput output(body, model, axis.axis, options.out);
   sim::FlexionPictures pictures(model, output, axis.axis, settings.image_angles_deg, options.out);
   StageMeter sweep_meter;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
-      body, conditions, settings, [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+      body, conditions, settings,
+      [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
         const auto ligament = output.write_angle(angle, x);
         if (settings.images)
           pictures.keep(angle, x, ligament);
-      });
+      },
+      &contact);
   output.finish(sweep.angles);
   nlohmann::json sweep_figures = {{"success", sweep.success},
                                   {"angles_reached", sweep.angles.size()}};
@@ -216,6 +236,10 @@ void add_flexion_command(CLI::App& app)
   command->add_option("--speed", options->speed, "interactive: femur speed, deg/s (default 45)");
   command->add_option("--time-step", options->time_step,
                       "interactive: frame time step, s (default 0.01)");
+  command
+      ->add_option("--contact", options->contact,
+                   "ligament-bone contact: on (default) or off (the ligament may cross the bones)")
+      ->check(CLI::IsMember({"on", "off"}));
   command->add_flag("--no-images", options->no_images, "no PNG pictures (no X server needed)");
   command->callback([options] { run_flexion(*options); });
 }

@@ -1,6 +1,7 @@
 #include "sim/flexion/flexion_config.hpp"
 
 #include "common/error.hpp"
+#include "sim/scene/contact_table.hpp"
 #include "sim/scene/toml_reader.hpp"
 
 namespace ligsim::sim {
@@ -69,6 +70,18 @@ void read_interactive(TomlTable& table, InteractiveSettings& interactive)
   table.reject_unknown_keys();
 }
 
+void read_contact(TomlTable& table, ContactConfig& contact)
+{
+  read_contact_table(table, contact);
+  if (table.has("bones")) {
+    contact.bones = table.texts("bones");
+    for (const std::string& bone : contact.bones)
+      if (bone != "femur" && bone != "tibia")
+        table.fail_at("bones", "expected \"femur\" and/or \"tibia\", got \"" + bone + "\"");
+  }
+  table.reject_unknown_keys();
+}
+
 } // namespace
 
 void parse_flexion_config(const std::string& text, const fs::path& base, const std::string& name,
@@ -100,6 +113,8 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
     read_static(*quasi_static, settings.newton);
   if (auto interactive = root.table("interactive"))
     read_interactive(*interactive, settings.interactive);
+  if (auto contact = root.table("contact"))
+    read_contact(*contact, settings.contact);
   root.reject_unknown_keys();
 }
 

@@ -40,6 +40,18 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"wall_s", angle.wall_s}};
   if (angle.frame >= 0)
     entry["frame"] = angle.frame;
+  if (!angle.contact.empty()) {
+    nlohmann::json bones = nlohmann::json::object();
+    for (const BoneContact& bone : angle.contact) {
+      bones[bone.bone] = {{"min_gap_mm", bone.min_gap_mm}, {"penetration_mm", bone.penetration_mm}};
+      if (bone.in_solve)
+        bones[bone.bone].update({{"force_n", json_vector3(bone.force_n)},
+                                 {"force_magnitude_n", bone.force_n.norm()},
+                                 {"area_mm2", bone.area_mm2},
+                                 {"nodes", bone.nodes}});
+    }
+    entry["contact"] = bones;
+  }
   return entry;
 }
 
@@ -78,7 +90,10 @@ vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(const AngleResul
   const std::string label = angle_label(angle.angle_deg);
   const std::string ligament = "ligament_" + label + ".vtu";
   const std::string femur = "femur_" + label + ".vtp";
-  auto grid = m_ligament.write(ligament, angle.angle_deg, x);
+  PointArrays contact;
+  if (angle.gap_mm.size() > 0)
+    contact = {{"gap_mm", angle.gap_mm}, {"contact_pressure", angle.pressure_mpa}};
+  auto grid = m_ligament.write(ligament, angle.angle_deg, x, contact);
   write_vtk(turned_femur(angle.angle_deg), m_directory / femur);
   m_series.push_back({angle.angle_deg, 0, ligament});
   m_series.push_back({angle.angle_deg, 1, femur});
@@ -92,12 +107,27 @@ void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
     write_pvd(m_directory / "flexion.pvd", m_series);
   std::string csv = "angle_deg,strain_energy_mj,converged,max_fiber_stretch,mean_fiber_stretch,"
                     "femur_force_n,tibia_force_n,newton_iterations,substeps,relative_residual,"
-                    "min_j,wall_s\n";
-  for (const AngleResult& a : angles)
-    csv += fmt::format("{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.3g},{:.6g},{:.4f}\n",
+                    "min_j,wall_s,femur_contact_n,tibia_contact_n,femur_contact_area_mm2,"
+                    "tibia_contact_area_mm2,max_penetration_mm\n";
+  for (const AngleResult& a : angles) {
+    csv += fmt::format("{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.3g},{:.6g},{:.4f}",
                        a.angle_deg, a.strain_energy_mj, a.converged ? 1 : 0, a.max_fiber_stretch,
                        a.mean_fiber_stretch, a.femur_force_n.norm(), a.tibia_force_n.norm(),
                        a.newton_iterations, a.substeps, a.relative_residual, a.min_j, a.wall_s);
+    // Contact columns stay empty where contact is off or the bone takes none.
+    std::string force[2], area[2], penetration;
+    double deepest = 0.0;
+    for (const BoneContact& bone : a.contact) {
+      const int b = bone.bone == "femur" ? 0 : 1;
+      if (bone.in_solve) {
+        force[b] = fmt::format("{:.9g}", bone.force_n.norm());
+        area[b] = fmt::format("{:.6g}", bone.area_mm2);
+      }
+      deepest = std::max(deepest, bone.penetration_mm);
+      penetration = fmt::format("{:.4g}", deepest);
+    }
+    csv += fmt::format(",{},{},{},{},{}\n", force[0], force[1], area[0], area[1], penetration);
+  }
   write_text_atomically(m_directory / "flexion.csv", csv);
 
   PlotSpec plot;

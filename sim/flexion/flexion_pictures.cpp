@@ -75,6 +75,10 @@ void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x,
     if (std::abs(wanted - angle.angle_deg) < 1e-9) {
       m_states[angle.angle_deg] = x;
       m_grids[angle.angle_deg] = ligament;
+      std::vector<Eigen::Vector3d>& touching = m_contacts[angle.angle_deg];
+      for (Eigen::Index n = 0; n < angle.pressure_mpa.size(); ++n)
+        if (angle.pressure_mpa(n) > 0.0)
+          touching.push_back(x.segment<3>(3 * n));
     }
 }
 
@@ -97,6 +101,7 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
       picture.ligament = grid;
       picture.bones = {femur, m_model.tibia};
       picture.caption = "flexion " + angle_label(angle) + " deg";
+      picture.contact_points_mm = m_contacts.at(angle);
       const fs::path png = m_directory / ("ligament_" + angle_label(angle) + ".png");
       render_ligament_png(picture, camera, png);
       written.push_back(png);

@@ -39,6 +39,7 @@ private:
   std::filesystem::path m_directory;
   std::map<double, Eigen::VectorXd> m_states;
   std::map<double, vtkSmartPointer<vtkUnstructuredGrid>> m_grids;
+  std::map<double, std::vector<Eigen::Vector3d>> m_contacts; ///< nodes touching a bone
 };
 
 } // namespace ligsim::sim

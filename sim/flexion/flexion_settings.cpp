@@ -37,6 +37,7 @@ void validate(const FlexionSettings& settings)
   if (!settings.material.fiber)
     fail("flexion: the ligament material needs its fiber law");
   sim::validate(settings.material);
+  sim::validate(settings.contact);
 }
 
 std::string to_string(FlexionMode mode)

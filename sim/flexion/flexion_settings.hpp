@@ -3,6 +3,7 @@
 /// in-situ strain, quasi-static or interactive, and which pictures to draw (README, section
 /// "Knee flexion").
 
+#include "sim/contact/contact_config.hpp"
 #include "sim/material/material_parameters.hpp"
 #include "sim/solver/linear_solver.hpp"
 #include "sim/solver/static_solver.hpp"
@@ -53,6 +54,8 @@ struct FlexionSettings {
   double in_situ_strain = 0.029;
   NewtonSettings newton;
   InteractiveSettings interactive;
+  /// Ligament-bone contact; on by default (the model has both bones).
+  ContactConfig contact;
   bool images = true;
   /// The angles drawn as PNG (those of them in the sweep).
   std::vector<double> image_angles_deg = {0, 45, 90};

@@ -39,10 +39,13 @@ std::vector<double> load_factors(const std::vector<double>& angles_deg)
   return factors;
 }
 
-/// Energy, fiber stretch and attachment forces of state `x`.
+/// Energy, fiber stretch, attachment forces and contact of state `x` at load factor t.
 void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
-             const Eigen::VectorXd& x, const Eigen::VectorXd& residual, AngleResult& result)
+             const KneeContact* contact, bool contact_on, double t, const Eigen::VectorXd& x,
+             const Eigen::VectorXd& residual, AngleResult& result)
 {
+  if (contact)
+    result.contact = contact->measure(x, t, contact_on, result.gap_mm, result.pressure_mpa);
   double volume = 0.0;
   double weighted_stretch = 0.0;
   result.max_fiber_stretch = 0.0;
@@ -65,13 +68,16 @@ void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
 
 /// Equilibrium at each angle, each solve starting from the previous angle's state.
 SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                               const FlexionSettings& settings, Eigen::VectorXd& x,
-                               const AngleCallback& on_angle)
+                               const FlexionSettings& settings, const KneeContact* contact,
+                               Eigen::VectorXd& x, const AngleCallback& on_angle)
 {
   SweepResult sweep;
   NewtonSettings newton = settings.newton;
   newton.load_factors = load_factors(settings.angles_deg);
   StaticSolver solver(body, conditions, newton);
+  const bool contact_on = contact && settings.contact.enabled.value_or(true);
+  if (contact_on)
+    solver.set_extra_potential(&contact->potential());
   Progress progress("flexion angles", settings.angles_deg.size());
   const StaticResult result =
       solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
@@ -84,7 +90,7 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
         angle.substeps = step.substeps;
         angle.relative_residual = step.relative_residual;
         angle.wall_s = step.wall_s;
-        measure(body, conditions, state, residual, angle);
+        measure(body, conditions, contact, contact_on, step.load_factor, state, residual, angle);
         sweep.angles.push_back(angle);
         if (on_angle)
           on_angle(angle, state);
@@ -103,8 +109,8 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
 /// Implicit Euler frames while the femur turns at the set angular speed, from the equilibrium at
 /// 0 degrees; the angles of the sweep are recorded at the frames that reach them.
 SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                              const FlexionSettings& settings, Eigen::VectorXd& x,
-                              const AngleCallback& on_angle)
+                              const FlexionSettings& settings, const KneeContact* contact,
+                              Eigen::VectorXd& x, const AngleCallback& on_angle)
 {
   const InteractiveSettings& interactive = settings.interactive;
   const std::vector<double>& angles = settings.angles_deg;
@@ -119,7 +125,7 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
   start.mode = FlexionMode::quasi_static;
   SweepResult sweep;
   const auto settle_start = std::chrono::steady_clock::now();
-  SweepResult settled = quasi_static_sweep(body, conditions, start, x, {});
+  SweepResult settled = quasi_static_sweep(body, conditions, start, contact, x, {});
   if (!settled.success) {
     settled.failure = "settling at 0 deg before the interactive sweep: " + settled.failure;
     return settled;
@@ -155,6 +161,9 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
   dynamics.linear_solver = interactive.linear_solver;
   dynamics.pcg = settings.newton.pcg;
   ImplicitEuler solver(body, conditions, dynamics);
+  const bool contact_on = contact && settings.contact.enabled.value_or(true);
+  if (contact_on)
+    solver.set_extra_potential(&contact->potential());
   Progress progress("interactive frames", static_cast<std::size_t>(frames));
   auto since_recorded = std::chrono::steady_clock::now();
   int solves = 0;
@@ -173,7 +182,7 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
         angle.substeps = frame.substeps;
         angle.relative_residual = frame.relative_residual;
         angle.wall_s = seconds_since(since_recorded);
-        measure(body, conditions, state, residual, angle);
+        measure(body, conditions, contact, contact_on, frame.load_factor, state, residual, angle);
         record(angle, state);
         solves = 0;
         since_recorded = std::chrono::steady_clock::now();
@@ -250,15 +259,16 @@ BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& ax
 }
 
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                              const FlexionSettings& settings, const AngleCallback& on_angle)
+                              const FlexionSettings& settings, const AngleCallback& on_angle,
+                              const KneeContact* contact)
 {
   validate(settings);
   const auto start = std::chrono::steady_clock::now();
   Eigen::VectorXd x = body.rest_positions();
   const double unrelaxed = body.energy(x).energy;
   SweepResult sweep = settings.mode == FlexionMode::quasi_static
-                          ? quasi_static_sweep(body, conditions, settings, x, on_angle)
-                          : interactive_sweep(body, conditions, settings, x, on_angle);
+                          ? quasi_static_sweep(body, conditions, settings, contact, x, on_angle)
+                          : interactive_sweep(body, conditions, settings, contact, x, on_angle);
   sweep.unrelaxed_energy_mj = unrelaxed;
   sweep.wall_s = seconds_since(start);
   return sweep;

@@ -6,6 +6,7 @@
 
 #include "sim/flexion/axis/condyle_axis.hpp"
 #include "sim/flexion/flexion_settings.hpp"
+#include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
@@ -54,6 +55,10 @@ struct AngleResult {
   double min_j = 1.0;
   double wall_s = 0.0; ///< since the previous angle
   int frame = -1;      ///< interactive: the frame that reached this angle
+  /// With contact: per bone, and per node the gap (mm) and the contact pressure (MPa).
+  std::vector<BoneContact> contact;
+  Eigen::VectorXd gap_mm;
+  Eigen::VectorXd pressure_mpa;
 };
 
 struct SweepResult {
@@ -71,9 +76,12 @@ struct SweepResult {
 /// Called for each angle reached, with the positions (flat, mm).
 using AngleCallback = std::function<void(const AngleResult&, const Eigen::VectorXd& x)>;
 
-/// Sweeps the angles of `settings` (in `conditions`, load factor = angle / last angle). Never
-/// throws on divergence: the result says where it stopped.
+/// Sweeps the angles of `settings` (in `conditions`, load factor = angle / last angle), with
+/// ligament-bone contact when `contact` is given and settings.contact does not turn it off (then
+/// `contact` only measures gaps and penetration). Never throws on divergence: the result says
+/// where it stopped.
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                              const FlexionSettings& settings, const AngleCallback& on_angle);
+                              const FlexionSettings& settings, const AngleCallback& on_angle,
+                              const KneeContact* contact = nullptr);
 
 } // namespace ligsim::sim

@@ -3,6 +3,7 @@
 /// solver and outputs, read from a TOML file (format in README.md, section "Simulation").
 
 #include "common/mesh.hpp"
+#include "sim/contact/contact_config.hpp"
 #include "sim/material/material_parameters.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
@@ -23,6 +24,13 @@ struct OutputSettings {
   bool vtu = true; ///< false: summary.json and reactions.csv only
 };
 
+/// A rigid bone for contact: its surface, moved with a [[rigid]] set (or fixed).
+struct SceneBone {
+  std::string name;
+  std::filesystem::path surface;
+  std::string follows; ///< a [[rigid]] set's name, or "" for a fixed bone
+};
+
 struct Scene {
   std::filesystem::path file; ///< the scene file ("" when parsed from text)
   std::string mesh_source;    ///< "file <path>" or the generator and its parameters
@@ -35,6 +43,8 @@ struct Scene {
   NewtonSettings newton;
   DynamicsSettings dynamics;
   OutputSettings output;
+  ContactConfig contact; ///< used when `bones` is not empty and contact is not turned off
+  std::vector<SceneBone> bones;
 };
 
 /// Reads a scene file; relative paths in it are relative to the file's folder. Throws

@@ -1,6 +1,7 @@
 #include "common/error.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
+#include "sim/scene/contact_table.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/toml_reader.hpp"
 #include "sim/scene/vtu_mesh.hpp"
@@ -299,6 +300,32 @@ void read_dynamics(TomlTable& table, DynamicsSettings& dynamics)
   table.reject_unknown_keys();
 }
 
+/// [contact] with its [[contact.bone]] tables; a bone follows a [[rigid]] set or stays fixed.
+void read_contact(TomlTable& table, const fs::path& base, Scene& scene)
+{
+  read_contact_table(table, scene.contact);
+  for (TomlTable& bone_table : table.tables("bone")) {
+    SceneBone bone;
+    bone.name = bone_table.required_text("name");
+    bone.surface = base / bone_table.required_text("surface");
+    bone.follows = bone_table.text("follows", "");
+    bone_table.reject_unknown_keys();
+    if (!bone.follows.empty()) {
+      bool found = false;
+      for (const ConstraintSet& set : scene.conditions.constraints)
+        found = found || (set.name == bone.follows && set.rigid);
+      if (!found)
+        bone_table.fail_at("follows",
+                           "no [[rigid]] constraint on a set named '" + bone.follows + "'");
+    }
+    scene.bones.push_back(bone);
+  }
+  table.reject_unknown_keys();
+  if (scene.bones.empty())
+    table.fail_at("bone", "[contact] needs at least one [[contact.bone]]");
+  validate(scene.contact);
+}
+
 } // namespace
 
 Scene parse_scene(const std::string& text, const fs::path& base, const std::string& name)
@@ -346,6 +373,8 @@ Scene parse_scene(const std::string& text, const fs::path& base, const std::stri
     if (scene.output.every < 1)
       fail("{} output: every must be at least 1", name);
   }
+  if (auto contact = root.table("contact"))
+    read_contact(*contact, base, scene);
   root.reject_unknown_keys();
   if (scene.conditions.constraints.empty())
     fail("{}: no [[fix]], [[displace]] or [[rigid]] constraint: the body could move freely", name);

@@ -103,15 +103,26 @@ deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std:
   return grid;
 }
 
-void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x)
+void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x,
+                             const PointArrays& extra)
 {
-  write(fmt::format("step_{:04d}.vtu", index), time, x);
+  write(fmt::format("step_{:04d}.vtu", index), time, x, extra);
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> SceneOutput::write(const std::string& name, double time,
-                                                        const Eigen::VectorXd& x)
+                                                        const Eigen::VectorXd& x,
+                                                        const PointArrays& extra)
 {
   auto grid = deformed_grid(m_body, x, name);
+  for (const auto& [array_name, values] : extra) {
+    if (values.size() != m_body.node_count() || !values.allFinite())
+      fail<SolverError>("{}: point data \"{}\" is missing or not finite; nothing written", name,
+                        array_name);
+    auto array = make_array(array_name.c_str(), 1, m_body.node_count());
+    for (int n = 0; n < m_body.node_count(); ++n)
+      array->SetValue(n, values(n));
+    grid->GetPointData()->AddArray(array);
+  }
   write_vtk(grid, m_directory / name);
   m_steps.emplace_back(time, name);
   return grid;

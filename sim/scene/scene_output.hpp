@@ -23,16 +23,21 @@ namespace ligsim::sim {
 vtkSmartPointer<vtkUnstructuredGrid>
 deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std::string& label);
 
+/// Extra point data of a written state: name and one value per node.
+using PointArrays = std::vector<std::pair<std::string, Eigen::VectorXd>>;
+
 class SceneOutput {
 public:
   SceneOutput(const HyperelasticBody& body, std::filesystem::path directory);
 
   /// Writes `<directory>/step_<index>.vtu` for positions `x` (mm) at `time` (load factor or
   /// seconds). Throws SolverError rather than write a non-finite value.
-  void write_step(int index, double time, const Eigen::VectorXd& x);
-  /// The same under any file name (relative to the directory); returns what it wrote.
+  void write_step(int index, double time, const Eigen::VectorXd& x, const PointArrays& extra = {});
+  /// The same under any file name (relative to the directory), with `extra` point data;
+  /// returns what it wrote.
   vtkSmartPointer<vtkUnstructuredGrid> write(const std::string& name, double time,
-                                             const Eigen::VectorXd& x);
+                                             const Eigen::VectorXd& x,
+                                             const PointArrays& extra = {});
 
   /// Writes `<directory>/<pvd>` listing every step written.
   void finish(const std::string& pvd = "series.pvd");

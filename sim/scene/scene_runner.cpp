@@ -4,7 +4,11 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "sim/contact/bone_level_set.hpp"
+#include "sim/contact/contact_potential.hpp"
+#include "sim/contact/contact_surface.hpp"
 #include "sim/scene/scene_output.hpp"
+#include "stages/io/surface_reader.hpp"
 
 #include <fmt/format.h>
 
@@ -36,6 +40,64 @@ nlohmann::json reactions_json(const BoundaryConditions& conditions, const Eigen:
   return reactions;
 }
 
+/// The scene's bones as contact obstacles: level sets cached in the output folder's contact/.
+struct SceneContact {
+  std::vector<std::unique_ptr<BoneLevelSet>> grids;
+  std::unique_ptr<ContactPotential> potential;
+  nlohmann::json figures;
+};
+
+std::unique_ptr<SceneContact> scene_contact(const Scene& scene, const fs::path& out)
+{
+  if (scene.bones.empty() || !scene.contact.enabled.value_or(true))
+    return nullptr;
+  const fs::path cache = out / "contact";
+  auto contact = std::make_unique<SceneContact>();
+  std::vector<ContactObstacle> obstacles;
+  for (const SceneBone& bone : scene.bones) {
+    const TriangleSurface surface = io::read_surface(bone.surface);
+    contact->grids.push_back(
+        BoneLevelSet::cached(surface, scene.contact.grid, cache / (bone.name + ".vdb")));
+    ContactObstacle obstacle{bone.name, contact->grids.back().get(), std::nullopt, {}};
+    for (const ConstraintSet& set : scene.conditions.constraints)
+      if (!bone.follows.empty() && set.name == bone.follows) {
+        obstacle.motion = set.rigid;
+        obstacle.excluded_nodes = set.nodes;
+      }
+    const LevelSetFigures& grid = contact->grids.back()->figures();
+    contact->figures[bone.name] = {{"surface", bone.surface.string()},
+                                   {"follows", bone.follows},
+                                   {"reused", grid.reused},
+                                   {"build_s", grid.build_s},
+                                   {"active_voxels", grid.active_voxels}};
+    obstacles.push_back(obstacle);
+  }
+  contact->potential = std::make_unique<ContactPotential>(
+      static_cast<int>(scene.mesh.V.rows()), free_boundary_surface(scene.mesh, scene.conditions),
+      std::move(obstacles), scene.contact.barrier);
+  contact->figures["d_hat_mm"] = scene.contact.barrier.d_hat_mm;
+  contact->figures["stiffness_mpa_per_mm"] = scene.contact.barrier.stiffness_mpa_per_mm;
+  return contact;
+}
+
+/// Per bone contact force, area and smallest gap at (x, t); the per node arrays for the VTU.
+nlohmann::json contact_json(const SceneContact* contact, const Eigen::VectorXd& x, double t,
+                            PointArrays& arrays)
+{
+  arrays.clear();
+  if (!contact)
+    return nullptr;
+  const ContactMeasures m = contact->potential->measure(x, t);
+  nlohmann::json bones = nlohmann::json::object();
+  for (std::size_t o = 0; o < m.force_n.size(); ++o)
+    bones[contact->potential->obstacles()[o].name] = {{"force_n", json_vector3(m.force_n[o])},
+                                                      {"area_mm2", m.area_mm2[o]},
+                                                      {"nodes", m.active_nodes[o]},
+                                                      {"min_gap_mm", m.min_gap_mm[o]}};
+  arrays = {{"gap_mm", m.gap_mm}, {"contact_pressure", m.pressure_mpa}};
+  return bones;
+}
+
 } // namespace
 
 SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& summary)
@@ -43,11 +105,14 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
   ensure_directory(out);
   StageMeter setup_meter;
   const HyperelasticBody body(scene.mesh, scene.material, scene.fibers);
+  const std::unique_ptr<SceneContact> contact = scene_contact(scene, out);
   summary.add_stage("setup", setup_meter,
                     {{"nodes", body.node_count()},
                      {"elements", body.element_count()},
                      {"fibers", body.material().has_fibers()},
-                     {"rest_volume_mm3", body.rest_volume()}});
+                     {"rest_volume_mm3", body.rest_volume()},
+                     {"contact", contact ? contact->figures : nlohmann::json("off")}});
+  PointArrays contact_arrays;
 
   std::unique_ptr<SceneOutput> output;
   if (scene.output.vtu)
@@ -62,6 +127,8 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
 
   if (scene.kind == SceneKind::quasi_static) {
     StaticSolver solver(body, scene.conditions, scene.newton);
+    if (contact)
+      solver.set_extra_potential(contact->potential.get());
     Eigen::VectorXd x = body.rest_positions();
     if (output)
       output->write_step(0, 0.0, x);
@@ -84,10 +151,12 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                                   {"wall_s", step.wall_s}};
           entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                               fmt::format("{},{}", step.step, step.load_factor));
+          if (contact)
+            entry["contact"] = contact_json(contact.get(), state, step.load_factor, contact_arrays);
           entries.push_back(entry);
           const bool last = step.step == scene.newton.load_steps;
           if (output && (step.step % scene.output.every == 0 || last))
-            output->write_step(step.step, step.load_factor, state);
+            output->write_step(step.step, step.load_factor, state, contact_arrays);
           progress.advance();
         });
     progress.finish();
@@ -103,6 +172,8 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                      {"linear_solver_stored_values", solver.linear_solver_storage()}};
   } else {
     ImplicitEuler solver(body, scene.conditions, scene.dynamics);
+    if (contact)
+      solver.set_extra_potential(contact->potential.get());
     Eigen::VectorXd x = body.rest_positions();
     if (output)
       output->write_step(0, 0.0, x);
@@ -123,9 +194,11 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                               {"wall_s", frame.wall_s}};
       entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                           fmt::format("{},{}", frame.frame, frame.time_s));
+      if (contact)
+        entry["contact"] = contact_json(contact.get(), state, frame.load_factor, contact_arrays);
       entries.push_back(entry);
       if (output)
-        output->write_step(frame.frame, frame.time_s, state);
+        output->write_step(frame.frame, frame.time_s, state, contact_arrays);
     };
     // Every output frame is recorded as it comes; the last one always.
     FrameReport last;

@@ -144,6 +144,20 @@ std::vector<int> TomlTable::integers(const std::string& key)
   return values;
 }
 
+std::vector<std::string> TomlTable::texts(const std::string& key)
+{
+  const toml::array* array = node(key).as_array();
+  if (!array)
+    fail_at(key, "expected an array of strings");
+  std::vector<std::string> values;
+  for (const toml::node& item : *array) {
+    if (!item.is_string())
+      fail_at(key, "expected an array of strings");
+    values.push_back(item.value<std::string>().value());
+  }
+  return values;
+}
+
 std::vector<double> TomlTable::numbers(const std::string& key)
 {
   const toml::array* array = node(key).as_array();

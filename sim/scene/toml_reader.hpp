@@ -37,6 +37,8 @@ public:
   Eigen::Vector3d required_vector3(const std::string& key);
   Eigen::Vector3i integer_vector3(const std::string& key);
   std::vector<int> integers(const std::string& key);
+  /// An array of strings.
+  std::vector<std::string> texts(const std::string& key);
   /// An array of numbers (integers or floats).
   std::vector<double> numbers(const std::string& key);
   /// A sub-table (inline or not); nullopt when absent.

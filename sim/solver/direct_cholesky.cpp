@@ -30,7 +30,8 @@ DirectCholesky::DirectCholesky(const HyperelasticBody& body, const DofPartition&
 }
 
 int DirectCholesky::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project,
-                            double scale, const Eigen::VectorXd& mass)
+                            double scale, const Eigen::VectorXd& mass,
+                            const std::vector<NodeBlock>& blocks)
 {
   m_stiffness.set_zero();
   int projected = 0;
@@ -41,6 +42,8 @@ int DirectCholesky::prepare(const HyperelasticBody& body, const Eigen::VectorXd&
     for (Eigen::Index e = begin; e < end; ++e)
       m_stiffness.add_element(e, m_chunk[static_cast<std::size_t>(e - begin)], scale);
   }
+  for (const NodeBlock& block : blocks)
+    m_stiffness.add_node_block(block.node, block.block, scale);
   if (mass.size() > 0)
     m_stiffness.add_diagonal(mass);
   m_factor_fresh = false;

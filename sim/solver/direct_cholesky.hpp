@@ -3,6 +3,7 @@
 /// factorisation: a factor of an earlier matrix preconditions CG on the current one, and the
 /// matrix is refactorised only when that stops paying off. The pattern is analysed once.
 
+#include "sim/solver/extra_potential.hpp"
 #include "sim/solver/linear_solver.hpp"
 #include "sim/solver/stiffness_matrix.hpp"
 
@@ -18,9 +19,9 @@ class DirectCholesky {
 public:
   DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs);
 
-  /// Assembles A = diag(mass) + scale K(x); returns the projected element count.
+  /// Assembles A = diag(mass) + scale (K(x) + node blocks); returns the projected element count.
   int prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project, double scale,
-              const Eigen::VectorXd& mass);
+              const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks);
 
   /// Solves A y = b: exactly with a fresh factor, else by CG preconditioned with the lagged one,
   /// refactorising when CG is slow. Reports an indefinite A (failed factorisation or negative

@@ -20,12 +20,14 @@ FilteredPcg::FilteredPcg(const HyperelasticBody& body, const DofPartition& dofs,
 }
 
 int FilteredPcg::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project,
-                         double scale, const Eigen::VectorXd& mass_full)
+                         double scale, const Eigen::VectorXd& mass_full,
+                         const std::vector<NodeBlock>& node_blocks)
 {
   const int projected =
       body.element_hessians(x, 0, body.element_count(), project, m_hessians.data());
   m_scale = scale;
   m_mass = mass_full;
+  m_node_blocks = node_blocks;
 
   // Block-Jacobi: the 3 x 3 diagonal node blocks, with prescribed rows and columns replaced by
   // the identity so that the filtered operator stays invertible.
@@ -34,6 +36,8 @@ int FilteredPcg::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x,
     for (int i = 0; i < 4; ++i)
       blocks[static_cast<std::size_t>(m_T(e, i))] +=
           scale * m_hessians[static_cast<std::size_t>(e)].block<3, 3>(3 * i, 3 * i);
+  for (const NodeBlock& block : m_node_blocks)
+    blocks[static_cast<std::size_t>(block.node)] += scale * block.block;
   const Eigen::VectorXd& mask = m_dofs.free_mask();
   for (std::size_t n = 0; n < blocks.size(); ++n) {
     Eigen::Matrix3d& block = blocks[n];
@@ -76,6 +80,8 @@ void FilteredPcg::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
   for (const Eigen::VectorXd& local : partial)
     if (local.size() == x.size())
       y += local;
+  for (const NodeBlock& block : m_node_blocks)
+    y.segment<3>(3 * block.node) += block.block * x.segment<3>(3 * block.node);
   y *= m_scale;
   if (m_mass.size() > 0)
     y += m_mass.cwiseProduct(x);

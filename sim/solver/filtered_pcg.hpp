@@ -4,6 +4,7 @@
 /// operator applied element by element from stored element matrices.
 
 #include "sim/material/weiss_material.hpp"
+#include "sim/solver/extra_potential.hpp"
 #include "sim/solver/linear_solver.hpp"
 
 #include <Eigen/Core>
@@ -16,9 +17,10 @@ class FilteredPcg {
 public:
   FilteredPcg(const HyperelasticBody& body, const DofPartition& dofs, const PcgSettings& settings);
 
-  /// Stores the element matrices of diag(mass) + scale K(x) and the preconditioner.
+  /// Stores the element matrices of diag(mass) + scale (K(x) + node blocks) and the
+  /// preconditioner.
   int prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project, double scale,
-              const Eigen::VectorXd& mass_full);
+              const Eigen::VectorXd& mass_full, const std::vector<NodeBlock>& blocks);
 
   /// Solves the filtered system S A S y = S b on full-length vectors; y's prescribed entries
   /// stay zero.
@@ -30,7 +32,7 @@ public:
   std::size_t stored_values() const { return 144 * m_hessians.size(); }
 
 private:
-  /// y = S (diag(mass) + scale K) S x.
+  /// y = S (diag(mass) + scale (K + node blocks)) S x.
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   const Tetrahedra& m_T;
@@ -38,7 +40,8 @@ private:
   PcgSettings m_settings;
   std::vector<Matrix12d> m_hessians;
   double m_scale = 1.0;
-  Eigen::VectorXd m_mass;                         ///< full length, may be empty
+  Eigen::VectorXd m_mass; ///< full length, may be empty
+  std::vector<NodeBlock> m_node_blocks;
   std::vector<Eigen::Matrix3d> m_block_inverse;   ///< one per node
   mutable std::vector<Eigen::VectorXd> m_partial; ///< per-worker products in apply()
 };

@@ -64,6 +64,8 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
 
   // Prescribed DOFs jump to their targets; the solve sees them as already moved.
   m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
+  if (m_extra)
+    m_extra->make_admissible(x, t);
   Eigen::VectorXd gradient;
   const BodyEnergy energy = m_body.energy_gradient(x, gradient);
   if (!std::isfinite(energy.energy)) {
@@ -72,6 +74,14 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     return false;
   }
   gradient -= t * m_external;
+  std::vector<NodeBlock> blocks;
+  if (m_extra) {
+    if (!std::isfinite(m_extra->energy(x, t, &gradient))) {
+      m_failure = "a node lies inside a contact obstacle and could not be moved out";
+      return false;
+    }
+    m_extra->hessian_blocks(x, t, blocks);
+  }
 
   Eigen::VectorXd force(m_dofs.free_count());
   Eigen::VectorXd velocity(m_dofs.free_count());
@@ -85,7 +95,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   bool project = m_settings.projection == PsdProjection::always;
   Eigen::VectorXd dv;
   for (;;) {
-    report.projected_elements += m_linear.prepare(x, project, h * h + h * beta, mass_term);
+    report.projected_elements += m_linear.prepare(x, project, h * h + h * beta, mass_term, blocks);
     Eigen::VectorXd Av;
     m_linear.multiply(velocity, Av);
     const Eigen::VectorXd rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
@@ -105,15 +115,28 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
                                   solve.relative_residual);
     return false;
   }
-  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
-    const Eigen::Index k = static_cast<Eigen::Index>(f);
-    v(free_dofs[f]) += dv(k);
-    x(free_dofs[f]) += h * v(free_dofs[f]);
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    v(free_dofs[f]) += dv(static_cast<Eigen::Index>(f));
+  if (m_extra) {
+    // The move h v stops short of any contact surface; the velocity shrinks with it.
+    Eigen::VectorXd move = Eigen::VectorXd::Zero(x.size());
+    for (int dof : free_dofs)
+      move(dof) = h * v(dof);
+    const double fraction = std::clamp(m_extra->max_step(x, move, t), 0.0, 1.0);
+    if (fraction < 1.0)
+      for (int dof : free_dofs)
+        v(dof) *= fraction;
   }
+  for (int dof : free_dofs)
+    x(dof) += h * v(dof);
   const BodyEnergy after = m_body.energy(x);
   if (!std::isfinite(after.energy)) {
     m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
                             after.inverted_j);
+    return false;
+  }
+  if (m_extra && !std::isfinite(m_extra->energy(x, t, nullptr))) {
+    m_failure = "the step would move a node across a contact surface";
     return false;
   }
   return true;
@@ -167,6 +190,8 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
     Eigen::VectorXd gradient;
     report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
     gradient -= report.load_factor * m_external;
+    if (m_extra)
+      m_extra->energy(x, report.load_factor, &gradient);
     double residual2 = 0.0;
     double reaction2 = 0.0;
     double inertia2 = 0.0;

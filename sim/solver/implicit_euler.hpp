@@ -4,6 +4,7 @@
 /// result would invert an element is redone in halved sub-steps.
 
 #include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 #include "sim/solver/linear_solver.hpp"
 #include "sim/solver/static_solver.hpp"
@@ -74,6 +75,11 @@ public:
   /// Runs from positions `x` at rest (zero velocity). Never throws on divergence.
   DynamicResult run(Eigen::VectorXd& x, const FrameCallback& on_frame = {});
 
+  /// Adds `potential` (not owned; null: none) to the energy: its gradient and Hessian blocks enter
+  /// each frame's solve, and the frame's move is shortened (velocity with it) so that no node
+  /// crosses a contact surface.
+  void set_extra_potential(const ExtraPotential* potential) { m_extra = potential; }
+
   /// Lumped nodal masses per DOF (flat), tonnes (mm, N, s units).
   const Eigen::VectorXd& masses() const { return m_mass; }
 
@@ -91,6 +97,7 @@ private:
   StiffnessSolver m_linear;
   double m_force_floor = 0.0;
   std::string m_failure;
+  const ExtraPotential* m_extra = nullptr;
 };
 
 } // namespace ligsim::sim

@@ -35,17 +35,17 @@ StiffnessSolver::StiffnessSolver(const HyperelasticBody& body, const DofPartitio
 StiffnessSolver::~StiffnessSolver() = default;
 
 int StiffnessSolver::prepare(const Eigen::VectorXd& x, bool project, double stiffness_scale,
-                             const Eigen::VectorXd& mass)
+                             const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks)
 {
   if (m_direct)
-    return m_direct->prepare(m_body, x, project, stiffness_scale, mass);
+    return m_direct->prepare(m_body, x, project, stiffness_scale, mass, blocks);
   Eigen::VectorXd mass_full;
   if (mass.size() > 0) {
     mass_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
     for (int f = 0; f < m_dofs.free_count(); ++f)
       mass_full(m_dofs.free_dofs()[static_cast<std::size_t>(f)]) = mass(f);
   }
-  return m_pcg->prepare(m_body, x, project, stiffness_scale, mass_full);
+  return m_pcg->prepare(m_body, x, project, stiffness_scale, mass_full, blocks);
 }
 
 LinearSolveReport StiffnessSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& y)

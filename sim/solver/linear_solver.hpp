@@ -4,6 +4,7 @@
 /// on element matrices (no global matrix).
 
 #include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
@@ -48,11 +49,13 @@ public:
 
   LinearSolverKind kind() const { return m_kind; }
 
-  /// Builds A = diag(mass) + stiffness_scale K(x) (mass: one entry per free DOF, or empty for
-  /// none), each element's K projected to positive semi-definite when `project`. Returns how
-  /// many elements needed that projection. `x` must have no inverted element.
+  /// Builds A = diag(mass) + stiffness_scale (K(x) + node blocks) (mass: one entry per free DOF,
+  /// or empty for none; node blocks: an extra potential's Hessian), each element's K projected
+  /// to positive semi-definite when `project`. Returns how many elements needed that
+  /// projection. `x` must have no inverted element.
   int prepare(const Eigen::VectorXd& x, bool project, double stiffness_scale = 1.0,
-              const Eigen::VectorXd& mass = Eigen::VectorXd());
+              const Eigen::VectorXd& mass = Eigen::VectorXd(),
+              const std::vector<NodeBlock>& blocks = {});
 
   /// Solves A y = b (free-DOF vectors). `y` holds the initial guess for CG.
   LinearSolveReport solve(const Eigen::VectorXd& b, Eigen::VectorXd& y);

@@ -107,19 +107,38 @@ void StaticSolver::evaluate(const Eigen::VectorXd& x, double t, Evaluation& out)
   out.body = m_body.energy_gradient(x, out.gradient);
   out.gradient -= t * m_external;
   out.total_energy = out.body.energy - t * m_external.dot(x - m_rest);
+  if (m_extra && std::isfinite(out.body.energy)) {
+    const double extra = m_extra->energy(x, t, &out.gradient);
+    out.extra_inadmissible = !std::isfinite(extra);
+    out.total_energy += extra;
+  }
+}
+
+Eigen::VectorXd StaticSolver::full_part(const Eigen::VectorXd& direction) const
+{
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(m_dofs.dof_count());
+  const auto& free_dofs = m_dofs.free_dofs();
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    full(free_dofs[f]) = direction(static_cast<Eigen::Index>(f));
+  return full;
 }
 
 std::string StaticSolver::describe_inversion(const BodyEnergy& energy) const
 {
+  if (energy.first_inverted < 0)
+    return "a node would cross a contact surface";
   return fmt::format("element {} inverts (J = {:.3g})", energy.first_inverted, energy.inverted_j);
 }
 
-bool StaticSolver::newton_direction(const Eigen::VectorXd& x, const Eigen::VectorXd& rhs,
+bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
                                     Eigen::VectorXd& direction, StepReport& report)
 {
   bool project = m_settings.projection == PsdProjection::always;
+  std::vector<NodeBlock> blocks;
+  if (m_extra)
+    m_extra->hessian_blocks(x, t, blocks);
   for (;;) {
-    report.projected_elements += m_linear.prepare(x, project);
+    report.projected_elements += m_linear.prepare(x, project, 1.0, Eigen::VectorXd(), blocks);
     direction = Eigen::VectorXd::Zero(rhs.size());
     const LinearSolveReport solve = m_linear.solve(rhs, direction);
     report.linear_iterations += solve.iterations;
@@ -156,9 +175,12 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   if (shift.lpNorm<Eigen::Infinity>() == 0.0)
     return true;
 
-  // Linear predictor: K_ff d = -(r_f + K_fc shift), with K at the converged state x.
+  // Linear predictor: K_ff d = -(r_f + K_fc shift), with K at the converged state x (the extra
+  // potential's obstacles where they were there).
   Evaluation at;
-  evaluate(x, t1, at);
+  evaluate(x, m_extra ? m_converged_t : t1, at);
+  if (m_extra)
+    at.gradient -= (t1 - m_converged_t) * m_external;
   Eigen::VectorXd coupling = Eigen::VectorXd::Zero(m_dofs.dof_count());
   const Tetrahedra& T = m_body.mesh().T;
   ElementEvaluation element;
@@ -176,7 +198,7 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   }
   const Eigen::VectorXd rhs = -free_part(at.gradient + coupling);
   Eigen::VectorXd predictor;
-  if (!newton_direction(x, rhs, predictor, report))
+  if (!newton_direction(x, m_converged_t, rhs, predictor, report))
     predictor = Eigen::VectorXd::Zero(rhs.size()); // the prescribed move alone, checked below
 
   const auto& free_dofs = m_dofs.free_dofs();
@@ -185,7 +207,12 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
     Eigen::VectorXd trial = target;
     for (std::size_t f = 0; f < free_dofs.size(); ++f)
       trial(free_dofs[f]) += alpha * predictor(static_cast<Eigen::Index>(f));
+    if (m_extra)
+      m_extra->make_admissible(trial, t1);
     energy = m_body.energy(trial);
+    if (m_extra && std::isfinite(energy.energy) &&
+        !std::isfinite(m_extra->energy(trial, t1, nullptr)))
+      energy = BodyEnergy{INFINITY, -1, 1.0};
     if (std::isfinite(energy.energy)) {
       x = trial;
       return true;
@@ -200,12 +227,22 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
 {
   if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
     return false;
+  const int pushed = m_extra ? m_extra->make_admissible(x, t1) : 0;
 
   const auto& free_dofs = m_dofs.free_dofs();
   Evaluation current;
   evaluate(x, t1, current);
   if (!std::isfinite(current.body.energy)) {
     m_failure = describe_inversion(current.body);
+    if (pushed > 0)
+      m_failure = fmt::format("moving {} nodes out of a contact obstacle: {} (they started too "
+                              "deep inside it)",
+                              pushed, m_failure);
+    return false;
+  }
+  if (current.extra_inadmissible) {
+    m_failure = "a node lies inside a contact obstacle, too deep to be moved out (beyond the "
+                "obstacle's distance band)";
     return false;
   }
   double first_energy_change = 0.0;
@@ -230,8 +267,10 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
                                         : m_settings.residual_tolerance;
     const bool small_energy_change =
         iteration == 0 || last_energy_change <= energy_tolerance * first_energy_change;
-    if (small_residual && small_energy_change)
+    if (small_residual && small_energy_change) {
+      m_converged_t = t1;
       return true;
+    }
     if (iteration == m_settings.max_iterations) {
       m_failure = fmt::format("no convergence in {} Newton iterations (relative residual {:.3g})",
                               iteration, report.relative_residual);
@@ -244,7 +283,7 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
     ++report.iterations;
 
     Eigen::VectorXd direction;
-    if (!newton_direction(x, -residual, direction, report))
+    if (!newton_direction(x, t1, -residual, direction, report))
       return false;
     const double slope = residual.dot(direction); // < 0
 
@@ -253,7 +292,8 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
     // the strain energy itself is near zero (rigid motions).
     const double energy_scale =
         std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
-    double alpha = 1.0;
+    // An extra potential bounds the step: no node crosses a contact surface on the way.
+    double alpha = m_extra ? std::min(1.0, m_extra->max_step(x, full_part(direction), t1)) : 1.0;
     bool accepted = false;
     Evaluation trial;
     Eigen::VectorXd x_trial;
@@ -263,7 +303,7 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
       for (std::size_t f = 0; f < free_dofs.size(); ++f)
         x_trial(free_dofs[f]) += alpha * direction(static_cast<Eigen::Index>(f));
       evaluate(x_trial, t1, trial);
-      if (std::isfinite(trial.total_energy)) {
+      if (std::isfinite(trial.total_energy) && alpha > 0.0) {
         const double change = trial.total_energy - current.total_energy;
         if (change <= armijo * alpha * slope) {
           accepted = true;
@@ -360,6 +400,8 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     Eigen::VectorXd gradient;
     report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
     gradient -= t_end * m_external;
+    if (m_extra)
+      m_extra->energy(x, t_end, &gradient);
     std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
     report.wall_s = seconds_since(step_start);
     result.newton_iterations += report.iterations;

@@ -3,6 +3,7 @@
 /// load stepping with automatic cut-back, convergence on the relative residual and the energy.
 
 #include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 #include "sim/solver/linear_solver.hpp"
 
@@ -89,6 +90,10 @@ public:
   /// converged state.
   StaticResult solve(Eigen::VectorXd& x, const StepCallback& on_step = {});
 
+  /// Adds `potential` (not owned; null: none) to the energy: its gradient enters the residual,
+  /// its Hessian blocks the Newton matrix, its step bound the line search.
+  void set_extra_potential(const ExtraPotential* potential) { m_extra = potential; }
+
   const DofPartition& dofs() const { return m_dofs; }
   std::size_t linear_solver_storage() const { return m_linear.stored_values(); }
 
@@ -96,7 +101,8 @@ private:
   struct Evaluation {
     BodyEnergy body;
     Eigen::VectorXd gradient;
-    double total_energy = 0.0; ///< strain energy minus the work of the external forces
+    double total_energy = 0.0;       ///< strain energy minus the work of the external forces
+    bool extra_inadmissible = false; ///< the extra potential is infinite
   };
 
   /// The load factors of the reported steps.
@@ -106,11 +112,13 @@ private:
   /// Moves the prescribed DOFs to their targets at t1, the free ones by the linear predictor.
   bool move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Newton direction for the free DOFs; handles projection. False when none is found.
-  bool newton_direction(const Eigen::VectorXd& x, const Eigen::VectorXd& rhs,
+  bool newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
                         Eigen::VectorXd& direction, StepReport& report);
   void evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const;
   Eigen::VectorXd free_part(const Eigen::VectorXd& full) const;
   std::string describe_inversion(const BodyEnergy& energy) const;
+  /// The free part of `direction` as a full-length vector (prescribed entries zero).
+  Eigen::VectorXd full_part(const Eigen::VectorXd& direction) const;
 
   const HyperelasticBody& m_body;
   const BoundaryConditions& m_conditions;
@@ -123,6 +131,8 @@ private:
   double m_force_floor = 0.0;           ///< absolute residual below which any state converges
   double m_energy_unit = 0.0;           ///< mu V: the scale of energy round-off, N mm
   std::string m_failure;
+  const ExtraPotential* m_extra = nullptr;
+  double m_converged_t = 0.0; ///< load factor of the last converged state
 };
 
 } // namespace ligsim::sim

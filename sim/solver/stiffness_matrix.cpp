@@ -48,6 +48,10 @@ StiffnessMatrix::StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs)
   for (int column = 0; column < n_free; ++column)
     m_diagonal[static_cast<std::size_t>(column)] = position(column, column);
 
+  m_node_free.resize(static_cast<std::size_t>(dofs.dof_count()));
+  for (int dof = 0; dof < dofs.dof_count(); ++dof)
+    m_node_free[static_cast<std::size_t>(dof)] = dofs.free_index(dof);
+
   m_scatter.assign(static_cast<std::size_t>(T.rows()) * pair_count, -1);
   for (Eigen::Index e = 0; e < T.rows(); ++e) {
     int k = 0;
@@ -76,6 +80,22 @@ void StiffnessMatrix::add_element(Eigen::Index e, const Matrix12d& H, double sca
     for (int q = p; q < 12; ++q, ++k)
       if (scatter[k] >= 0)
         values[scatter[k]] += scale * H(p, q);
+}
+
+void StiffnessMatrix::add_node_block(int node, const Eigen::Matrix3d& B, double scale)
+{
+  // A node's free DOFs are consecutive in the free numbering, so in the column of its DOF a the
+  // rows of its later DOFs follow the diagonal directly.
+  double* values = m_matrix.valuePtr();
+  const int* free = m_node_free.data() + 3 * static_cast<std::size_t>(node);
+  for (int a = 0; a < 3; ++a) {
+    if (free[a] < 0)
+      continue;
+    int position = m_diagonal[static_cast<std::size_t>(free[a])];
+    for (int b = a; b < 3; ++b)
+      if (free[b] >= 0)
+        values[position++] += scale * B(b, a);
+  }
 }
 
 void StiffnessMatrix::add_diagonal(const Eigen::VectorXd& diagonal)

@@ -24,6 +24,8 @@ public:
   void set_zero();
   /// Adds scale * H_e of element e (node-major 12 x 12) to the free-DOF entries.
   void add_element(Eigen::Index e, const Matrix12d& H, double scale = 1.0);
+  /// Adds scale * B (3 x 3) to the free entries of node n's own diagonal block.
+  void add_node_block(int node, const Eigen::Matrix3d& B, double scale = 1.0);
   /// Adds `diagonal` (one value per free DOF) to the diagonal.
   void add_diagonal(const Eigen::VectorXd& diagonal);
   /// y = A x for the symmetric matrix (both triangles), free DOFs.
@@ -33,8 +35,9 @@ private:
   /// Local pairs (p <= q) of a 12 x 12 block, in the order of m_scatter's entries.
   static constexpr int pair_count = 78;
   Eigen::SparseMatrix<double> m_matrix;
-  std::vector<int> m_scatter;  ///< pair_count value positions per element, -1 when prescribed
-  std::vector<int> m_diagonal; ///< value position of each column's diagonal
+  std::vector<int> m_scatter;   ///< pair_count value positions per element, -1 when prescribed
+  std::vector<int> m_diagonal;  ///< value position of each column's diagonal
+  std::vector<int> m_node_free; ///< free index of each DOF (-1: prescribed), node-major
 };
 
 } // namespace ligsim::sim

@@ -5,6 +5,7 @@
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
+#include "sim/verify/contact_stability.hpp"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -183,6 +184,8 @@ std::vector<StabilityCase> stability_cases()
   std::vector<StabilityCase> cases;
   for (const CaseDefinition& d : definitions())
     cases.push_back(d.info);
+  for (const StabilityCase& c : contact_stability_cases()) // sim/verify/contact_stability.cpp
+    cases.push_back(c);
   return cases;
 }
 
@@ -198,6 +201,8 @@ StabilityResult run_stability_case(const std::string& name, int cells)
     result.description = d.info.description;
     return result;
   }
+  if (std::optional<StabilityResult> contact = run_contact_stability_case(name))
+    return *contact;
   fail("unknown stability case '{}'", name);
 }
 

@@ -125,6 +125,37 @@ TEST(FlexionCli, BandSweepWritesEveryOutput)
     EXPECT_GT(fs::file_size(out / picture), 10000u) << picture;
 }
 
+TEST(FlexionCli, ContactKeepsTheBandOutOfTheFemurWhereItWouldCrossIt)
+{
+  // Without contact the synthetic band enters the femur by about 5 mm at 120 degrees (measured
+  // against the femur's triangles); with contact (the default) it wraps it and stays out.
+  const std::string sweep = "flexion --model " + band_model().string() + " " + band_axis() +
+                            " --angles 0,30,60,90,95,100,105,110,115,120 --no-images --out ";
+  const fs::path off = fresh_folder("flexion_band_contact_off");
+  ASSERT_EQ(run_ligsim(sweep + off.string() + " --contact off").exit_code, 0);
+  const fs::path on = fresh_folder("flexion_band_contact_on");
+  const CliResult result = run_ligsim(sweep + on.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json off_summary = read_json(off / "summary.json");
+  const nlohmann::json on_summary = read_json(on / "summary.json");
+  const nlohmann::json& without = off_summary["results"]["angles"];
+  const nlohmann::json& with = on_summary["results"]["angles"];
+  ASSERT_EQ(with.size(), 10u);
+  EXPECT_GT(without[9]["contact"]["femur"]["penetration_mm"].get<double>(), 1.0);
+  EXPECT_FALSE(without[9]["contact"]["femur"].contains("force_n")); // off: measured, not solved
+  for (const nlohmann::json& angle : with) {
+    EXPECT_TRUE(angle["converged"].get<bool>());
+    for (const char* bone : {"femur", "tibia"})
+      EXPECT_LT(angle["contact"][bone]["penetration_mm"].get<double>(), 0.05) << angle.dump();
+  }
+  EXPECT_GT(with[9]["contact"]["femur"]["force_magnitude_n"].get<double>(), 100.0);
+  EXPECT_GT(with[9]["contact"]["femur"]["area_mm2"].get<double>(), 1.0);
+  // The VTUs carry the gap and the contact pressure.
+  const auto ligament = read_vtu(on / "ligament_120.vtu");
+  for (const char* array : {"gap_mm", "contact_pressure"})
+    EXPECT_NE(ligament->GetPointData()->GetArray(array), nullptr) << array;
+}
+
 TEST(FlexionCli, InteractiveModeReportsFramesPerSecond)
 {
   const fs::path out = fresh_folder("flexion_band_interactive");
@@ -176,13 +207,22 @@ TEST(FlexionCli, RealMclSweepsToNinetyDegrees)
   for (const nlohmann::json& angle : angles)
     EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();
   // At 0 degrees the pre-stretched MCL is in equilibrium: what the femur and the tibia exert
-  // cancels, and relaxing lowered the energy of the imposed pre-stretch.
+  // through the attachments and by contact cancels, and relaxing lowered the energy of the
+  // imposed pre-stretch.
   const nlohmann::json& rest = angles[0];
   double imbalance = 0.0;
-  for (int i = 0; i < 3; ++i)
-    imbalance += std::pow(
-        rest["femur_force_n"][i].get<double>() + rest["tibia_force_n"][i].get<double>(), 2);
+  for (int i = 0; i < 3; ++i) {
+    double sum = rest["femur_force_n"][i].get<double>() + rest["tibia_force_n"][i].get<double>();
+    for (const char* bone : {"femur", "tibia"})
+      sum += rest["contact"][bone]["force_n"][i].get<double>();
+    imbalance += sum * sum;
+  }
   EXPECT_LT(std::sqrt(imbalance), 1e-6 * rest["femur_force_magnitude_n"].get<double>());
+  // Contact is on by default, and no ligament node enters a bone (measured against the bone
+  // triangles, not the grids the solver uses).
+  for (const nlohmann::json& angle : angles)
+    for (const char* bone : {"femur", "tibia"})
+      EXPECT_LT(angle["contact"][bone]["penetration_mm"].get<double>(), 0.05) << angle.dump();
   EXPECT_GT(rest["mean_fiber_stretch"].get<double>(), 1.0);
   EXPECT_LT(rest["strain_energy_mj"].get<double>(),
             summary["results"]["unrelaxed_prestretch_energy_mj"].get<double>());

@@ -333,6 +333,29 @@ void render_ligament_png(const LigamentPicture& picture, const PictureCamera& ca
   fibers->GetProperty()->SetLineWidth(std::max(1.0f, static_cast<float>(picture.height) / 600.0f));
   renderer->AddActor(fibers);
 
+  // Where the ligament touches a bone: blue dots over everything else of the ligament.
+  if (!picture.contact_points_mm.empty()) {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> vertices;
+    for (const Eigen::Vector3d& p : picture.contact_points_mm) {
+      const vtkIdType id = points->InsertNextPoint(p.data());
+      vertices->InsertNextCell(1, &id);
+    }
+    vtkNew<vtkPolyData> dots;
+    dots->SetPoints(points);
+    dots->SetVerts(vertices);
+    vtkNew<vtkPolyDataMapper> dot_mapper;
+    dot_mapper->SetInputData(dots);
+    dot_mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> contact;
+    contact->SetMapper(dot_mapper);
+    contact->GetProperty()->SetColor(0.1, 0.3, 0.95);
+    contact->GetProperty()->SetPointSize(
+        std::max(3.0f, static_cast<float>(picture.height) / 150.0f));
+    contact->GetProperty()->SetRenderPointsAsSpheres(true);
+    renderer->AddActor(contact);
+  }
+
   // Bones.
   std::vector<vtkSmartPointer<vtkActor>> bones;
   for (size_t i = 0; i < picture.bones.size(); ++i) {

@@ -37,6 +37,8 @@ struct LigamentPicture {
   std::string caption;       ///< e.g. "flexion 45 deg", top left
   /// Top of the colour scale (MPa), the same for every angle of a sweep; <= 0: this frame's max.
   double energy_max_mpa = 0;
+  /// Ligament nodes that touch a bone (contact pressure above zero), drawn as blue dots.
+  std::vector<Eigen::Vector3d> contact_points_mm;
   int max_fibers = 3000; ///< fiber strokes drawn at most (they are also kept 1.25 lengths apart)
   int width = 1200, height = 900;
 };

@@ -60,3 +60,37 @@ TEST(FlexionConfig, ErrorsNameTheKey)
   EXPECT_THROW(parse_flexion_config("angles_deg = [0, \"x\"]\n", "/", "f.toml", settings),
                ligsim::InputError);
 }
+
+TEST(FlexionConfig, ReadsContact)
+{
+  FlexionSettings settings;
+  EXPECT_FALSE(settings.contact.enabled.has_value()); // unset: on, the model has both bones
+  parse_flexion_config(R"(
+[contact]
+enabled = false
+d_hat_mm = 0.5
+stiffness_mpa_per_mm = 20
+voxel_mm = 0.25
+bones = ["tibia"]
+)",
+                       "/", "flexion.toml", settings);
+  EXPECT_EQ(settings.contact.enabled, false);
+  EXPECT_EQ(settings.contact.barrier.d_hat_mm, 0.5);
+  EXPECT_EQ(settings.contact.barrier.stiffness_mpa_per_mm, 20.0);
+  EXPECT_EQ(settings.contact.grid.voxel_mm, 0.25);
+  EXPECT_EQ(settings.contact.grid.band_mm, 1.0); // the larger of 1 mm and d_hat + 2 voxels
+  EXPECT_EQ(settings.contact.bones, std::vector<std::string>{"tibia"});
+  EXPECT_NO_THROW(validate(settings));
+
+  for (const char* bad : {"[contact]\nbones = [\"patella\"]\n", "[contact]\nd_hat_mm = -1\n",
+                          "[contact]\nband_mm = 0.1\n", "[contact]\nd_hat = 0.3\n"}) {
+    FlexionSettings other;
+    EXPECT_THROW(
+        {
+          parse_flexion_config(bad, "/", "flexion.toml", other);
+          validate(other);
+        },
+        ligsim::InputError)
+        << bad;
+  }
+}

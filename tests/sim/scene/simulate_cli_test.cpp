@@ -87,3 +87,28 @@ TEST(SimulateCli, BadSceneIsOneLineErrorAndNoOutput)
   EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1);
   EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
+
+TEST(SimulateCli, BandPulledOverACylinderSceneBalancesContactAndEndForces)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_cli_band_cylinder";
+  fs::remove_all(out);
+  const CliRun run = run_ligsim(
+      "simulate " LIGSIM_SOURCE_DIR "/data/scenes/band-over-cylinder.toml --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json& last = summary["results"]["steps"].back();
+  const nlohmann::json& cylinder = last["contact"]["cylinder"];
+  double imbalance = 0.0, contact = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double f = cylinder["force_n"][i].get<double>();
+    const double ends = last["reactions"]["fixed"]["force_n"][i].get<double>() +
+                        last["reactions"]["pulled"]["force_n"][i].get<double>();
+    imbalance += (f + ends) * (f + ends);
+    contact += f * f;
+  }
+  EXPECT_GT(std::sqrt(contact), 10.0); // N: the band is pulled hard over the cylinder
+  EXPECT_LT(std::sqrt(imbalance), 1e-6 * std::sqrt(contact));
+  EXPECT_GT(cylinder["min_gap_mm"].get<double>(), 0.0);
+  EXPECT_GT(cylinder["area_mm2"].get<double>(), 5.0);
+  EXPECT_TRUE(fs::exists(out / "contact" / "cylinder.vdb")); // the grid's cache
+}

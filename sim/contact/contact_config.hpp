@@ -1,0 +1,25 @@
+#pragma once
+/// @brief What a `[contact]` table of a flexion config or a scene sets: whether contact is on,
+/// the barrier's activation distance and stiffness, the bones' grids, which bones.
+
+#include "sim/contact/bone_level_set.hpp"
+#include "sim/contact/contact_potential.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct ContactConfig {
+  std::optional<bool> enabled; ///< unset: on where the model has bone surfaces
+  ContactSettings barrier;
+  LevelSetSettings grid;
+  std::vector<std::string> bones; ///< flexion: which bones ("femur", "tibia"); empty: both
+};
+
+/// Throws InputError naming the first value that cannot work (d_hat, stiffness, voxel, band
+/// narrower than d_hat plus two voxels).
+void validate(const ContactConfig& config);
+
+} // namespace ligsim::sim

@@ -1,0 +1,113 @@
+#pragma once
+/// @brief Ligament-bone contact as an IPC barrier (Li et al. 2020) on the surface nodes:
+/// E = kappa sum_o sum_i a_i b(d_o(x_i, t)), b(d) = -(d - d_hat)^2 ln(d / d_hat) for d < d_hat,
+/// with d_o the signed distance to obstacle o in its pose at load factor t and a_i the node's
+/// area. Exact gradient; Hessian blocks kappa a_i (b'' g g^T + b' R H R^T), projected to positive
+/// semi-definite for the solvers.
+
+#include "sim/contact/contact_surface.hpp"
+#include "sim/contact/distance_field.hpp"
+#include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/extra_potential.hpp"
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct ContactSettings {
+  double d_hat_mm = 0.3; ///< activation distance
+  /// kappa: the contact pressure is kappa (-b'(d)), MPa; at d = d_hat / 10 it is 12.2 kappa d_hat.
+  double stiffness_mpa_per_mm = 100.0;
+};
+
+/// One rigid obstacle: its distance field in the rest frame, moved by `motion` at load factor t
+/// (none: fixed), and the nodes that take no contact with it (those bound to it).
+struct ContactObstacle {
+  std::string name;
+  const DistanceField* field = nullptr; ///< not owned
+  std::optional<RigidMotion> motion;
+  std::vector<int> excluded_nodes;
+};
+
+/// Per node and per obstacle measures of a state.
+struct ContactMeasures {
+  std::vector<Eigen::Vector3d> force_n; ///< per obstacle: what it exerts on the body
+  std::vector<double> area_mm2;         ///< per obstacle: area of the nodes within d_hat
+  std::vector<double> min_gap_mm;       ///< per obstacle: smallest distance of a contact node
+  std::vector<int> active_nodes;        ///< per obstacle: nodes within d_hat
+  Eigen::VectorXd gap_mm;               ///< per mesh node: distance to the nearest obstacle
+  Eigen::VectorXd pressure_mpa;         ///< per mesh node: contact force / area
+};
+
+/// Not thread-safe: it caches which nodes are near each obstacle.
+class ContactPotential final : public ExtraPotential {
+public:
+  /// `surface`: the candidate nodes (mesh indices) with their areas, and the faces the contact
+  /// area is measured on (may be empty: then the nodes' areas); nodes that the solver holds
+  /// (prescribed) must be left out. Throws InputError on bad settings.
+  ContactPotential(int node_count, const ContactSurface& surface,
+                   std::vector<ContactObstacle> obstacles, const ContactSettings& settings);
+
+  double energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const override;
+  void hessian_blocks(const Eigen::VectorXd& x, double t,
+                      std::vector<NodeBlock>& blocks) const override;
+  double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx, double t) const override;
+  int make_admissible(Eigen::VectorXd& x, double t) const override;
+
+  /// The blocks, optionally unprojected (the exact Hessian, for tests).
+  void node_hessians(const Eigen::VectorXd& x, double t, bool project,
+                     std::vector<NodeBlock>& blocks) const;
+  ContactMeasures measure(const Eigen::VectorXd& x, double t) const;
+
+  const ContactSettings& settings() const { return m_settings; }
+  const std::vector<ContactObstacle>& obstacles() const { return m_obstacles; }
+  /// The signed distance of point `p` (world, mm) to obstacle o at load factor t.
+  double distance(std::size_t o, const Eigen::Vector3d& p, double t) const;
+
+private:
+  struct Pose {
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< rest frame to world
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();       ///< world = R (p - c) + c + shift
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    Eigen::Vector3d to_local(const Eigen::Vector3d& world) const
+    {
+      return rotation.transpose() * (world - origin - shift) + origin;
+    }
+  };
+  /// One (obstacle, node) pair that may touch.
+  struct Pair {
+    int node = 0;
+    double area = 0.0;
+  };
+  /// Where a pair was last classified (local point) and whether it was near then.
+  struct PairState {
+    Eigen::Vector3d p0 = Eigen::Vector3d::Constant(INFINITY);
+    bool near = true;
+    Eigen::Vector3d sampled_at = Eigen::Vector3d::Constant(INFINITY);
+    DistanceSample sample; ///< at `sampled_at`, with the Hessian
+  };
+  Pose pose(std::size_t o, double t) const;
+  /// Whether a node at local point p (rest frame of obstacle o) is surely farther than `far`.
+  bool surely_farther(std::size_t o, const Eigen::Vector3d& p, double far) const;
+  /// Whether pair i of obstacle o, now at local point p, may be within d_hat. A pair found
+  /// farther than d_hat + slack is not looked up again until it moved by slack / 2 relative to
+  /// the obstacle: the cheap cull that makes far nodes cost a subtraction.
+  bool maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+  /// The field at local point p for pair i of obstacle o, reused when p has not moved (energy,
+  /// gradient and Hessian of one state sample once).
+  const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+
+  int m_node_count = 0;
+  std::vector<ContactObstacle> m_obstacles;
+  std::vector<std::vector<Pair>> m_pairs; ///< per obstacle
+  /// Per obstacle and pair (a cache: calls must not run concurrently).
+  mutable std::vector<std::vector<PairState>> m_state;
+  double m_slack_mm = 0.0;
+  ContactSettings m_settings;
+  Triangles m_faces;
+};
+
+} // namespace ligsim::sim

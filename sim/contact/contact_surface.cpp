@@ -1,0 +1,78 @@
+#include "sim/contact/contact_surface.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <map>
+
+namespace ligsim::sim {
+
+ContactSurface boundary_surface(const TetMesh& mesh)
+{
+  // Faces opposite each corner, ordered so that the normal points out of a positive tet.
+  static constexpr int face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;
+  for (Eigen::Index e = 0; e < mesh.T.rows(); ++e)
+    for (const auto& corners : face_corners) {
+      const std::array<int, 3> face = {mesh.T(e, corners[0]), mesh.T(e, corners[1]),
+                                       mesh.T(e, corners[2])};
+      std::array<int, 3> key = face;
+      std::sort(key.begin(), key.end());
+      auto [it, inserted] = faces.try_emplace(key, 1, face);
+      if (!inserted)
+        ++it->second.first;
+    }
+  ContactSurface surface;
+  std::vector<double> area(static_cast<std::size_t>(mesh.V.rows()), 0.0);
+  std::vector<std::array<int, 3>> boundary;
+  for (const auto& [key, entry] : faces) {
+    if (entry.first != 1)
+      continue;
+    const std::array<int, 3>& f = entry.second;
+    boundary.push_back(f);
+    const Eigen::Vector3d a = mesh.V.row(f[0]).transpose();
+    const Eigen::Vector3d b = mesh.V.row(f[1]).transpose();
+    const Eigen::Vector3d c = mesh.V.row(f[2]).transpose();
+    const double third = 0.5 * (b - a).cross(c - a).norm() / 3.0;
+    for (int n : f)
+      area[static_cast<std::size_t>(n)] += third;
+  }
+  surface.faces.resize(static_cast<Eigen::Index>(boundary.size()), 3);
+  for (std::size_t f = 0; f < boundary.size(); ++f)
+    for (int i = 0; i < 3; ++i)
+      surface.faces(static_cast<Eigen::Index>(f), i) = boundary[f][static_cast<std::size_t>(i)];
+  std::vector<double> areas;
+  for (std::size_t n = 0; n < area.size(); ++n)
+    if (area[n] > 0.0) {
+      surface.nodes.push_back(static_cast<int>(n));
+      areas.push_back(area[n]);
+    }
+  surface.areas_mm2 =
+      Eigen::Map<Eigen::VectorXd>(areas.data(), static_cast<Eigen::Index>(areas.size()));
+  return surface;
+}
+
+ContactSurface free_boundary_surface(const TetMesh& mesh, const BoundaryConditions& conditions)
+{
+  const ContactSurface all = boundary_surface(mesh);
+  std::vector<bool> held(static_cast<std::size_t>(mesh.V.rows()), false);
+  for (const ConstraintSet& set : conditions.constraints)
+    if (set.components[0] && set.components[1] && set.components[2])
+      for (int n : set.nodes)
+        if (n >= 0 && n < mesh.V.rows())
+          held[static_cast<std::size_t>(n)] = true;
+  ContactSurface free;
+  free.faces = all.faces;
+  std::vector<double> areas;
+  for (std::size_t i = 0; i < all.nodes.size(); ++i)
+    if (!held[static_cast<std::size_t>(all.nodes[i])]) {
+      free.nodes.push_back(all.nodes[i]);
+      areas.push_back(all.areas_mm2(static_cast<Eigen::Index>(i)));
+    }
+  free.areas_mm2 =
+      Eigen::Map<Eigen::VectorXd>(areas.data(), static_cast<Eigen::Index>(areas.size()));
+  return free;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,59 @@
+#pragma once
+/// @brief The knee model's bones as contact obstacles for the ligament: a level set per bone
+/// (cached in <model>/contact/), the femur's moving with the femur's rigid motion, the barrier
+/// on the ligament's free surface nodes, and an independent check of penetration against the
+/// bone triangles themselves (VTK's vtkImplicitPolyDataDistance, not the grids).
+
+#include "sim/contact/contact_config.hpp"
+#include "sim/contact/contact_potential.hpp"
+#include "sim/flexion/knee_model.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkImplicitPolyDataDistance;
+
+namespace ligsim::sim {
+
+/// One bone's contact at one state.
+struct BoneContact {
+  std::string bone;
+  bool in_solve = true; ///< false: contact off, only gaps and penetration measured
+  Eigen::Vector3d force_n = Eigen::Vector3d::Zero(); ///< what the bone exerts on the ligament
+  double area_mm2 = 0.0;       ///< surface triangles whose nodes are all within d_hat
+  int nodes = 0;               ///< nodes within d_hat
+  double min_gap_mm = 0.0;     ///< smallest grid distance of a contact node
+  double penetration_mm = 0.0; ///< deepest node inside the triangles (independent), >= 0
+};
+
+class KneeContact {
+public:
+  /// Grids of the bones `config.bones` names (empty: both), read from or written to
+  /// `cache_dir`; the femur follows the "femur" set's rigid motion of `conditions`.
+  KneeContact(const KneeModel& model, const BoundaryConditions& conditions,
+              const ContactConfig& config, const std::filesystem::path& cache_dir);
+  ~KneeContact();
+
+  const ContactPotential& potential() const { return *m_potential; }
+  /// Per bone: grid voxels, memory, build or read time, open edges of the surface.
+  const nlohmann::json& figures() const { return m_figures; }
+
+  /// Per bone forces, areas, gaps and the independent penetration at positions x, load factor t;
+  /// per node gap (mm) and pressure (MPa) into `gap_mm` and `pressure_mpa`. With `forces`
+  /// false (contact off in the solve) only the gaps and the penetration.
+  std::vector<BoneContact> measure(const Eigen::VectorXd& x, double t, bool forces,
+                                   Eigen::VectorXd& gap_mm, Eigen::VectorXd& pressure_mpa) const;
+
+private:
+  struct Bone;
+  std::vector<std::unique_ptr<Bone>> m_bones;
+  std::unique_ptr<ContactPotential> m_potential;
+  nlohmann::json m_figures;
+};
+
+} // namespace ligsim::sim
