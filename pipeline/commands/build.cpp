@@ -30,7 +30,7 @@ struct BuildOptions {
   double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
   double in_situ = kUnset;
   std::string field_method, span;
-  bool force = false;
+  bool force = false, strict = false;
 };
 
 void add_options(CLI::App* command, BuildOptions& o)
@@ -92,6 +92,8 @@ void add_options(CLI::App* command, BuildOptions& o)
   command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
       ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
+  command->add_flag("--strict", o.strict,
+                    "refuse a defective ligament surface instead of repairing it");
 }
 
 void set_if(double value, double& target)
@@ -127,6 +129,7 @@ BuildConfig resolve_config(const BuildOptions& o)
     config.femur = o.femur;
   if (!o.tibia.empty())
     config.tibia = o.tibia;
+  config.strict = config.strict || o.strict;
   apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
                    o.femur_end, o);
   apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
@@ -149,7 +152,10 @@ void run_build_job(const BuildOptions& o, const std::string& target)
 {
   const BuildConfig config = resolve_config(o);
   // Check every input before the output folder is touched, so bad input leaves nothing behind.
-  pipeline::load_ligament(config);
+  repair::Report repairs;
+  pipeline::load_ligament(config, nullptr, &repairs);
+  for (const std::string& line : repair::describe(repairs))
+    log_info(fmt::format("surface repair: {}", line));
   pipeline::load_bone(config.femur);
   pipeline::load_bone(config.tibia);
 
@@ -161,6 +167,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
                       {"femur", config.femur.string()},
                       {"tibia", config.tibia.string()}};
   summary.parameters() = pipeline::to_json(config);
+  summary.results()["surface_repair"] = repair::to_json(repairs);
   try {
     pipeline::run_target(config, out, target, o.force, summary);
   } catch (const Error&) {

@@ -183,6 +183,7 @@ BuildConfig load_build_config(const fs::path& file)
   input.read_path("surface", config.surface);
   input.read_path("femur", config.femur);
   input.read_path("tibia", config.tibia);
+  input.read("strict", config.strict);
   input.reject_unknown();
 
   const toml::table* attachments = table_at(&root, "attachments");
@@ -282,7 +283,8 @@ nlohmann::json to_json(const BuildConfig& c)
 {
   nlohmann::json all = {{"surface", path_text(c.surface)},
                         {"femur", path_text(c.femur)},
-                        {"tibia", path_text(c.tibia)}};
+                        {"tibia", path_text(c.tibia)},
+                        {"strict", c.strict}};
   for (const char* stage :
        {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);

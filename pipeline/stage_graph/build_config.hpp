@@ -46,6 +46,8 @@ struct BuildConfig {
   std::filesystem::path surface; ///< ligament surface (required)
   std::filesystem::path femur;   ///< optional
   std::filesystem::path tibia;   ///< optional
+  /// Refuse a defective ligament surface instead of repairing it.
+  bool strict = false;
   attachments::Rule femur_attachment;
   attachments::Rule tibia_attachment;
   voxelize::Parameters voxelize;
