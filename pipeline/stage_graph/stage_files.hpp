@@ -18,6 +18,7 @@ namespace ligsim::pipeline {
 namespace files {
 inline constexpr const char* attachments = "attachments.vtp";
 inline constexpr const char* mask = "mask.vti";
+inline constexpr const char* mask_vdb = "surface.vdb"; ///< the level set, for Houdini/Blender
 inline constexpr const char* distance = "distance.vti";
 inline constexpr const char* centerline = "centerline.vtp";
 inline constexpr const char* field = "field.vti";

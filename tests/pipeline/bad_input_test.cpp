@@ -134,7 +134,8 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
   }
   const fs::path file = write_text("ligsim_two_boxes.obj", obj);
   expect_clean_failure("centerline --surface " + file.string(), fresh_folder("unconnected"),
-                       "cannot be connected", {"attachments.vtp", "mask.vti", "distance.vti"});
+                       "cannot be connected",
+                       {"attachments.vtp", "mask.vti", "surface.vdb", "distance.vti"});
 }
 
 TEST(BuildBadInput, ConfigWithUnknownKey)
