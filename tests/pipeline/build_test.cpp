@@ -3,6 +3,7 @@
 
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
+#include "stages/geometry/surface_topology.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "tests/pipeline/cli_runner.hpp"
@@ -248,4 +249,33 @@ TEST(Build, DefectiveMclIsRepairedIntoAValidModel)
   const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
   EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
   expect_centerline_inside_between_attachments(out, io::read_surface(out / "attachments.vtp"), 2.0);
+}
+
+TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
+{
+  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces.
+  const fs::path out = fresh_folder("mcl_labels");
+  const CliResult result =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl_labels.toml").string() +
+                 " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  expect_readable_outputs(out);
+  const nlohmann::json summary = read_summary(out);
+  const nlohmann::json& labels = summary["results"]["label_map"];
+  EXPECT_EQ(labels["spacing_mm"], nlohmann::json::array({0.3, 0.3, 1.0}));
+  EXPECT_NE(labels["frame"].get<std::string>().find("LPS"), std::string::npos);
+  for (const char* part : {"ligament", "femur", "tibia"}) {
+    EXPECT_EQ(labels[part]["components"].get<int>(), 1) << part;
+    EXPECT_TRUE(fs::exists(out / ("labels_" + std::string(part) + ".vtp"))) << part;
+  }
+  const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
+  EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
+  // The smooth label surface keeps the segmented MCL's volume.
+  const TriangleSurface mcl =
+      io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl"));
+  const TriangleSurface from_labels = io::read_surface(out / "labels_ligament.vtp");
+  EXPECT_TRUE(check_topology(from_labels).closed_manifold());
+  EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
+              0.05 * std::abs(signed_volume(mcl)));
+  expect_centerline_inside_between_attachments(out, from_labels, 2.0);
 }
