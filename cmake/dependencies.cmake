@@ -29,3 +29,7 @@ target_link_libraries(ligsim_cholmod INTERFACE ${CHOLMOD_LIBRARY})
 # Python binding, which is not installed.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
+
+# ITK: reading and writing segmentation label maps (NRRD, NIfTI, MetaImage). Only the modules
+# we use, and no ITK_USE_FILE: stages/labelmap/label_image.cpp registers its three formats.
+find_package(ITK REQUIRED COMPONENTS ITKCommon ITKIOImageBase ITKIONRRD ITKIONIFTI ITKIOMeta)

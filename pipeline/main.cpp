@@ -24,6 +24,7 @@ int main(int argc, char** argv)
 
   ligsim::cli::add_build_commands(app);
   ligsim::cli::add_synth_command(app);
+  ligsim::cli::add_labelmap_command(app);
   ligsim::cli::add_bench_command(app);
   ligsim::cli::add_simulate_command(app);
   ligsim::cli::add_verify_command(app);

@@ -4,6 +4,7 @@
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/label_inputs.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
 
@@ -24,13 +25,14 @@ constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
 /// Command-line flags of `build` and of every stage subcommand; each overrides the config file.
 struct BuildOptions {
   std::string config, surface, femur, tibia, out;
+  std::string labels, ligament_label, femur_label, tibia_label;
   std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
   std::vector<int> femur_indices, tibia_indices;
   double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
   double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
   double in_situ = kUnset;
   std::string field_method, span;
-  bool force = false;
+  bool force = false, strict = false;
 };
 
 void add_options(CLI::App* command, BuildOptions& o)
@@ -44,6 +46,17 @@ void add_options(CLI::App* command, BuildOptions& o)
   command->add_option("--femur", o.femur, "femur surface (optional)");
   command->add_option("--tibia", o.tibia, "tibia surface (optional)");
   command->add_option("--out", o.out, "output folder")->required();
+  auto* label_map = "Segmentation label map (instead of surfaces)";
+  command
+      ->add_option("--labels", o.labels,
+                   "label map: .nrrd, .seg.nrrd, .nii, .nii.gz, .mha or .mhd (physical LPS frame)")
+      ->group(label_map);
+  command->add_option("--ligament-label", o.ligament_label, "the ligament's label (a number)")
+      ->group(label_map);
+  command->add_option("--femur-label", o.femur_label, "the femur's label (optional)")
+      ->group(label_map);
+  command->add_option("--tibia-label", o.tibia_label, "the tibia's label (optional)")
+      ->group(label_map);
   auto* attach = "Attachment areas";
   command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")
       ->group(attach);
@@ -92,6 +105,8 @@ void add_options(CLI::App* command, BuildOptions& o)
   command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
       ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
+  command->add_flag("--strict", o.strict,
+                    "refuse a defective ligament surface instead of repairing it");
 }
 
 void set_if(double value, double& target)
@@ -127,6 +142,12 @@ BuildConfig resolve_config(const BuildOptions& o)
     config.femur = o.femur;
   if (!o.tibia.empty())
     config.tibia = o.tibia;
+  config.strict = config.strict || o.strict;
+  if (!o.labels.empty())
+    config.labels = o.labels;
+  set_if(o.ligament_label, config.ligament_label);
+  set_if(o.femur_label, config.femur_label);
+  set_if(o.tibia_label, config.tibia_label);
   apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
                    o.femur_end, o);
   apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
@@ -147,28 +168,49 @@ BuildConfig resolve_config(const BuildOptions& o)
 
 void run_build_job(const BuildOptions& o, const std::string& target)
 {
-  const BuildConfig config = resolve_config(o);
-  // Check every input before the output folder is touched, so bad input leaves nothing behind.
-  pipeline::load_ligament(config);
-  pipeline::load_bone(config.femur);
-  pipeline::load_bone(config.tibia);
-
   const fs::path out = o.out;
   const bool existed = fs::exists(out);
+  // On failure, a folder this run created is left as it was: absent.
+  const auto clean_up = [&] {
+    std::error_code ignored;
+    if (!existed) {
+      for (const char* part : {"ligament", "femur", "tibia"})
+        fs::remove(out / fmt::format("labels_{}.vtp", part), ignored);
+      fs::remove(out / ".ligsim-cache", ignored); // only removes it if empty
+      fs::remove(out, ignored);
+    }
+  };
+  // Check every input before the stages run, so bad input leaves nothing behind (surfaces from
+  // a label map are written only once all of them could be made).
+  nlohmann::json label_report;
+  BuildConfig config;
+  repair::Report repairs;
+  try {
+    config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
+    pipeline::load_ligament(config, nullptr, &repairs);
+    pipeline::load_bone(config.femur);
+    pipeline::load_bone(config.tibia);
+  } catch (const Error&) {
+    clean_up();
+    throw;
+  }
+  for (const std::string& line : repair::describe(repairs))
+    log_info(fmt::format("surface repair: {}", line));
+
   RunSummary summary(target == "model" ? "build" : target);
   summary.inputs() = {{"config", o.config},
                       {"surface", config.surface.string()},
                       {"femur", config.femur.string()},
-                      {"tibia", config.tibia.string()}};
+                      {"tibia", config.tibia.string()},
+                      {"labels", config.labels.string()}};
   summary.parameters() = pipeline::to_json(config);
+  summary.results()["surface_repair"] = repair::to_json(repairs);
+  if (!label_report.is_null())
+    summary.results()["label_map"] = label_report;
   try {
     pipeline::run_target(config, out, target, o.force, summary);
   } catch (const Error&) {
-    std::error_code ignored;
-    if (!existed) {
-      fs::remove(out / ".ligsim-cache", ignored); // only removes it if empty
-      fs::remove(out, ignored);
-    }
+    clean_up();
     throw;
   }
   summary.write(out);

@@ -14,6 +14,9 @@ void add_build_commands(CLI::App& app);
 void add_bench_command(CLI::App& app);
 /// `synth`: synthetic shapes with known axes.
 void add_synth_command(CLI::App& app);
+
+/// `ligsim labelmap`: surfaces voxelized into a segmentation label map.
+void add_labelmap_command(CLI::App& app);
 /// `simulate`: run a hyperelastic scene file.
 void add_simulate_command(CLI::App& app);
 /// `verify`: cube against FEBio, error against run time, stability report.

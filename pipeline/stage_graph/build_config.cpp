@@ -183,6 +183,17 @@ BuildConfig load_build_config(const fs::path& file)
   input.read_path("surface", config.surface);
   input.read_path("femur", config.femur);
   input.read_path("tibia", config.tibia);
+  input.read("strict", config.strict);
+  input.read_path("labels", config.labels);
+  for (auto [key, target] : {std::pair{"ligament_label", &config.ligament_label},
+                             std::pair{"femur_label", &config.femur_label},
+                             std::pair{"tibia_label", &config.tibia_label}}) {
+    // Kept as text, as on the command line; only numbers are read today.
+    int number = -1;
+    input.read(key, number);
+    if (number >= 0)
+      *target = std::to_string(number);
+  }
   input.reject_unknown();
 
   const toml::table* attachments = table_at(&root, "attachments");
@@ -280,9 +291,10 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
 
 nlohmann::json to_json(const BuildConfig& c)
 {
-  nlohmann::json all = {{"surface", path_text(c.surface)},
-                        {"femur", path_text(c.femur)},
-                        {"tibia", path_text(c.tibia)}};
+  nlohmann::json all = {{"surface", path_text(c.surface)}, {"femur", path_text(c.femur)},
+                        {"tibia", path_text(c.tibia)},     {"strict", c.strict},
+                        {"labels", path_text(c.labels)},   {"ligament_label", c.ligament_label},
+                        {"femur_label", c.femur_label},    {"tibia_label", c.tibia_label}};
   for (const char* stage :
        {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);

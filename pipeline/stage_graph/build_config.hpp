@@ -46,6 +46,12 @@ struct BuildConfig {
   std::filesystem::path surface; ///< ligament surface (required)
   std::filesystem::path femur;   ///< optional
   std::filesystem::path tibia;   ///< optional
+  /// Refuse a defective ligament surface instead of repairing it.
+  bool strict = false;
+  /// A segmentation label map to take the surfaces from (instead of surface/femur/tibia), and
+  /// the labels (numbers, as text) of the ligament and, optionally, the bones.
+  std::filesystem::path labels;
+  std::string ligament_label, femur_label, tibia_label;
   attachments::Rule femur_attachment;
   attachments::Rule tibia_attachment;
   voxelize::Parameters voxelize;

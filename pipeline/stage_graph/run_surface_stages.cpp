@@ -65,8 +65,8 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
 
 nlohmann::json run_voxelize(const BuildConfig& config, const fs::path& dir)
 {
-  const SurfaceQuery query(load_ligament(config));
-  const Mask mask = voxelize::voxelize(query, config.voxelize);
+  const Mask mask =
+      voxelize::voxelize(load_ligament(config), config.voxelize, dir / files::mask_vdb);
   write_vtk(io::to_image(mask, "inside"), dir / files::mask);
   const auto inside = std::count(mask.values.begin(), mask.values.end(), 1);
   nlohmann::json figures = grid_json(mask);

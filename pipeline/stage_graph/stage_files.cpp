@@ -14,12 +14,41 @@ namespace ligsim::pipeline {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// Point data of the surface as read, moved onto the repaired surface's vertices (0 on vertices
+/// added to fill holes).
+void follow_repair(const std::vector<int>& source_vertex,
+                   std::map<std::string, Eigen::VectorXd>& arrays)
+{
+  for (auto& [name, values] : arrays) {
+    Eigen::VectorXd moved = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(source_vertex.size()));
+    for (std::size_t v = 0; v < source_vertex.size(); ++v)
+      if (source_vertex[v] >= 0)
+        moved[static_cast<Eigen::Index>(v)] = values[source_vertex[v]];
+    values = std::move(moved);
+  }
+}
+
+} // namespace
+
 TriangleSurface load_ligament(const BuildConfig& config,
-                              std::map<std::string, Eigen::VectorXd>* arrays)
+                              std::map<std::string, Eigen::VectorXd>* arrays,
+                              repair::Report* repairs)
 {
   if (config.surface.empty())
     fail("no ligament surface given (--surface or [input] surface)");
   TriangleSurface surface = io::read_surface(config.surface, arrays);
+  if (!config.strict) {
+    repair::Result repaired = repair::repair_surface(surface);
+    if (!repaired.report.empty()) {
+      surface = std::move(repaired.surface);
+      if (arrays != nullptr)
+        follow_repair(repaired.source_vertex, *arrays);
+    }
+    if (repairs != nullptr)
+      *repairs = std::move(repaired.report);
+  }
   io::orient_outward(surface);
   io::require_closed_manifold(surface,
                               fmt::format("ligament surface '{}'", config.surface.string()));

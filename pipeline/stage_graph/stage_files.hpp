@@ -5,6 +5,7 @@
 #include "pipeline/stage_graph/build_config.hpp"
 #include "stages/geometry/grid.hpp"
 #include "stages/geometry/polyline.hpp"
+#include "stages/repair/repair.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,7 @@ namespace ligsim::pipeline {
 namespace files {
 inline constexpr const char* attachments = "attachments.vtp";
 inline constexpr const char* mask = "mask.vti";
+inline constexpr const char* mask_vdb = "surface.vdb"; ///< the level set, for Houdini/Blender
 inline constexpr const char* distance = "distance.vti";
 inline constexpr const char* centerline = "centerline.vtp";
 inline constexpr const char* field = "field.vti";
@@ -29,10 +31,12 @@ inline constexpr const char* tibia = "tibia.vtp";
 inline constexpr const char* scene = "scene.toml";
 } // namespace files
 
-/// The ligament surface: read, oriented outward, and required to be a closed manifold without
-/// self-intersections.
+/// The ligament surface: read, repaired unless `config.strict` (what was repaired goes to
+/// `repairs`; point arrays follow the repair), oriented outward, and required to be a closed
+/// manifold without self-intersections.
 TriangleSurface load_ligament(const BuildConfig& config,
-                              std::map<std::string, Eigen::VectorXd>* arrays = nullptr);
+                              std::map<std::string, Eigen::VectorXd>* arrays = nullptr,
+                              repair::Report* repairs = nullptr);
 
 /// A bone surface if the config names one.
 std::optional<TriangleSurface> load_bone(const std::filesystem::path& file);

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Bumped when a stage's algorithm changes, so old caches are not trusted.
-constexpr const char* kAlgorithmVersion = "ligsim-build-1";
+/// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize).
+constexpr const char* kAlgorithmVersion = "ligsim-build-2";
 
 const Stage& find_stage(const std::string& name)
 {

@@ -40,7 +40,7 @@ const std::vector<Stage>& build_stages()
       {"voxelize",
        "inside/outside voxel image of the ligament",
        {},
-       {files::mask},
+       {files::mask, files::mask_vdb},
        ligament_only,
        run_voxelize},
       {"distance",

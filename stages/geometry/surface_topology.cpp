@@ -42,8 +42,12 @@ TopologyReport check_topology(const TriangleSurface& surface)
       first_boundary = false;
     } else if (total > 2) {
       ++report.nonmanifold_edges;
+      if (report.nonmanifold_edge_list.size() < kReportedLocations)
+        report.nonmanifold_edge_list.push_back(edge);
     } else if (count.first != 1) {
       ++report.inconsistent_edges;
+      if (report.inconsistent_edge_list.size() < kReportedLocations)
+        report.inconsistent_edge_list.push_back(edge);
     }
   }
   return report;

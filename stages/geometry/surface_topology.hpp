@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <utility>
 #include <vector>
 
 namespace ligsim {
@@ -17,6 +18,8 @@ struct TopologyReport {
   std::vector<Eigen::Vector3d> boundary_edge_midpoints;   ///< a few of them, to say where, mm
   Eigen::Vector3d boundary_min = Eigen::Vector3d::Zero(); ///< bounding box of the boundary edges
   Eigen::Vector3d boundary_max = Eigen::Vector3d::Zero();
+  std::vector<std::pair<int, int>> nonmanifold_edge_list;  ///< a few of them (vertex indices)
+  std::vector<std::pair<int, int>> inconsistent_edge_list; ///< a few of them (vertex indices)
 
   bool closed_manifold() const
   {

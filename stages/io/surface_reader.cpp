@@ -21,6 +21,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 
 namespace ligsim::io {
 
@@ -47,11 +50,38 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
   return reader->GetOutput();
 }
 
+/// A binary STL announces its triangle count in bytes 80..83 and then holds 50 bytes per
+/// triangle; a shorter file was cut off (an interrupted copy or export), and VTK would read the
+/// part that is there as an open surface.
+void require_whole_binary_stl(const fs::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  std::string head(512, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const auto first = head.find_first_not_of(" \t\r\n");
+  const bool ascii =
+      first != std::string::npos && head.compare(first, 5, "solid") == 0 &&
+      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos);
+  if (ascii || head.size() < 84)
+    return;
+  std::uint32_t count = 0;
+  std::memcpy(&count, head.data() + 80, 4); // little-endian, as the format and x86 are
+  const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(count);
+  const std::uintmax_t size = fs::file_size(file);
+  if (size < expected)
+    fail("'{}' is a truncated binary STL: its header announces {} triangles ({} bytes) but the "
+         "file holds {} bytes ({} whole triangles)",
+         file.string(), count, expected, size, (size - 84) / 50);
+}
+
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 {
   const std::string extension = lower_extension(file);
-  if (extension == ".stl")
+  if (extension == ".stl") {
+    require_whole_binary_stl(file);
     return run_reader<vtkSTLReader>(file);
+  }
   if (extension == ".obj")
     return run_reader<vtkOBJReader>(file);
   if (extension == ".ply")
@@ -62,6 +92,14 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
     return run_reader<vtkPolyDataReader>(file);
   fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp or .vtk)", file.string(),
        extension);
+}
+
+/// "vertices 12 (x, y, z) and 40 (x, y, z) mm", for messages that say where an edge is.
+std::string edge_text(const TriangleSurface& surface, const std::pair<int, int>& edge)
+{
+  const Eigen::Vector3d a = surface.V.row(edge.first), b = surface.V.row(edge.second);
+  return fmt::format("vertices {} ({:.2f}, {:.2f}, {:.2f}) and {} ({:.2f}, {:.2f}, {:.2f}) mm",
+                     edge.first, a.x(), a.y(), a.z(), edge.second, b.x(), b.y(), b.z());
 }
 
 } // namespace
@@ -134,11 +172,13 @@ void require_closed_manifold(const TriangleSurface& surface, const std::string& 
          report.boundary_max.z(), p.x(), p.y(), p.z());
   }
   if (report.nonmanifold_edges > 0)
-    fail("{} is not a manifold: {} edges are shared by three or more triangles", what,
-         report.nonmanifold_edges);
+    fail("{} is not a manifold: {} edges are shared by three or more triangles (first: {})", what,
+         report.nonmanifold_edges, edge_text(surface, report.nonmanifold_edge_list.front()));
   if (report.inconsistent_edges > 0)
-    fail("{} is not consistently oriented: {} edges are run the same way by both triangles", what,
-         report.inconsistent_edges);
+    fail("{} is not consistently oriented: {} edges are run the same way by both triangles "
+         "(first: {})",
+         what, report.inconsistent_edges,
+         edge_text(surface, report.inconsistent_edge_list.front()));
   const auto crossings = self_intersections(surface, 1);
   if (!crossings.empty()) {
     const auto [a, b] = crossings.front();

@@ -4,9 +4,7 @@
 #include "common/mesh.hpp"
 #include "stages/geometry/grid.hpp"
 
-namespace ligsim {
-class SurfaceQuery;
-}
+#include <filesystem>
 
 namespace ligsim::voxelize {
 
@@ -21,9 +19,11 @@ struct Parameters {
 /// eight voxels thick.
 double default_spacing(const TriangleSurface& surface);
 
-/// Marks the voxels whose centres lie inside `surface` (1) or outside (0). Uses one ray per
-/// voxel column with parity counting, retrying a column whose crossings do not pair up.
-/// Throws InputError if the grid would exceed max_voxels.
-Mask voxelize(const SurfaceQuery& query, const Parameters& parameters);
+/// Marks the voxels whose centres lie inside `surface` (1) or outside (0): the sign of OpenVDB's
+/// level set (a flood fill from outside, robust to non-manifold edges, self-intersections and
+/// flipped triangles, which break ray parity). If `vdb_file` is given, the level set is also
+/// written there. Throws InputError if the grid would exceed max_voxels.
+Mask voxelize(const TriangleSurface& surface, const Parameters& parameters,
+              const std::filesystem::path& vdb_file = {});
 
 } // namespace ligsim::voxelize

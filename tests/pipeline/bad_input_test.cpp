@@ -134,7 +134,8 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
   }
   const fs::path file = write_text("ligsim_two_boxes.obj", obj);
   expect_clean_failure("centerline --surface " + file.string(), fresh_folder("unconnected"),
-                       "cannot be connected", {"attachments.vtp", "mask.vti", "distance.vti"});
+                       "cannot be connected",
+                       {"attachments.vtp", "mask.vti", "surface.vdb", "distance.vti"});
 }
 
 TEST(BuildBadInput, ConfigWithUnknownKey)
@@ -143,4 +144,17 @@ TEST(BuildBadInput, ConfigWithUnknownKey)
       write_text("ligsim_bad.toml", "[input]\nsurface = \"x.stl\"\n[centerline]\nalfa = 0.2\n");
   expect_clean_failure("build --config " + config.string(), fresh_folder("config"),
                        "unknown key 'alfa'");
+}
+
+TEST(BuildBadInput, StrictRefusesANonManifoldEdgeAndSaysWhere)
+{
+  // Two closed tetrahedra sharing the edge (1, 0, 0)-(0, 1, 0): four triangles there. The
+  // indices in the message are those of the surface as read (VTK merges and renumbers).
+  const fs::path file =
+      write_text("ligsim_bowtie.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 -1\nv 1 1 1\n"
+                                      "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"
+                                      "f 2 3 5\nf 3 2 6\nf 2 5 6\nf 3 6 5\n");
+  expect_clean_failure("build --strict --surface " + file.string(), fresh_folder("strict"),
+                       "three or more triangles (first: vertices 1 (0.00, 1.00, 0.00) and 2 "
+                       "(1.00, 0.00, 0.00) mm)");
 }

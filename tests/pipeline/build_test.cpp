@@ -3,10 +3,12 @@
 
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
+#include "stages/geometry/surface_topology.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "tests/pipeline/cli_runner.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <vtkCellData.h>
@@ -173,4 +175,107 @@ TEST(Build, RealMclCompletesEveryStage)
   expect_centerline_inside_between_attachments(
       out, io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl")),
       2.0);
+}
+
+namespace {
+
+/// The shipped MCL with one defect of several kinds, as an OBJ: a duplicated triangle, a flipped
+/// triangle, a hole (the fan of one vertex removed) and a stray octahedron 20 mm off.
+fs::path write_defective_mcl(const std::string& name)
+{
+  TriangleSurface mcl =
+      io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl"));
+  const int hole_centre = mcl.F(1500, 0);
+  std::string obj;
+  for (Eigen::Index v = 0; v < mcl.V.rows(); ++v)
+    obj += fmt::format("v {} {} {}\n", mcl.V(v, 0), mcl.V(v, 1), mcl.V(v, 2));
+  const Eigen::Vector3d centre = mcl.V.colwise().maxCoeff().transpose() + Eigen::Vector3d(20, 0, 0);
+  for (int corner = 0; corner < 6; ++corner) {
+    const Eigen::Vector3d p =
+        centre + (corner % 2 ? -1.0 : 1.0) * Eigen::Vector3d::Unit(corner / 2);
+    obj += fmt::format("v {} {} {}\n", p.x(), p.y(), p.z());
+  }
+  const auto face = [&obj](int a, int b, int c) {
+    obj += fmt::format("f {} {} {}\n", a + 1, b + 1, c + 1);
+  };
+  for (Eigen::Index f = 0; f < mcl.F.rows(); ++f) {
+    if ((mcl.F.row(f).array() == hole_centre).any())
+      continue;
+    if (f == 100)
+      face(mcl.F(f, 0), mcl.F(f, 2), mcl.F(f, 1));
+    else
+      face(mcl.F(f, 0), mcl.F(f, 1), mcl.F(f, 2));
+  }
+  face(mcl.F(7, 0), mcl.F(7, 1), mcl.F(7, 2));
+  const int o = static_cast<int>(mcl.V.rows());
+  for (int sx = 0; sx < 2; ++sx)
+    for (int sy = 0; sy < 2; ++sy)
+      for (int sz = 0; sz < 2; ++sz) {
+        if ((sx + sy + sz) % 2 == 1)
+          face(o + sx, o + 4 + sz, o + 2 + sy);
+        else
+          face(o + sx, o + 2 + sy, o + 4 + sz);
+      }
+  const fs::path file = fs::temp_directory_path() / name;
+  std::ofstream(file) << obj;
+  return file;
+}
+
+} // namespace
+
+TEST(Build, DefectiveMclIsRepairedIntoAValidModel)
+{
+  const fs::path surface = write_defective_mcl("ligsim_defective_mcl.obj");
+  const fs::path out = fresh_folder("repaired_mcl");
+  const CliResult result =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
+                 " --surface " + surface.string() + " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  for (const char* line :
+       {"surface repair: removed duplicate triangles: 1",
+        "surface repair: flipped inconsistent orientation: 1",
+        "surface repair: removed stray components: 1", "surface repair: filled holes: 1"})
+    EXPECT_NE(result.stderr_text.find(line), std::string::npos) << line << "\n"
+                                                                << result.stderr_text;
+  expect_readable_outputs(out);
+  const nlohmann::json summary = read_summary(out);
+  const nlohmann::json& repair = summary["results"]["surface_repair"];
+  EXPECT_TRUE(repair["repaired"].get<bool>());
+  EXPECT_EQ(repair["repairs"].size(), 4u);
+  for (const auto& entry : repair["repairs"]) {
+    EXPECT_EQ(entry["count"].get<int>(), 1) << entry.dump();
+    EXPECT_EQ(entry["locations"].size(), 1u) << entry.dump();
+  }
+  const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
+  EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
+  expect_centerline_inside_between_attachments(out, io::read_surface(out / "attachments.vtp"), 2.0);
+}
+
+TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
+{
+  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces.
+  const fs::path out = fresh_folder("mcl_labels");
+  const CliResult result =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl_labels.toml").string() +
+                 " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  expect_readable_outputs(out);
+  const nlohmann::json summary = read_summary(out);
+  const nlohmann::json& labels = summary["results"]["label_map"];
+  EXPECT_EQ(labels["spacing_mm"], nlohmann::json::array({0.3, 0.3, 1.0}));
+  EXPECT_NE(labels["frame"].get<std::string>().find("LPS"), std::string::npos);
+  for (const char* part : {"ligament", "femur", "tibia"}) {
+    EXPECT_EQ(labels[part]["components"].get<int>(), 1) << part;
+    EXPECT_TRUE(fs::exists(out / ("labels_" + std::string(part) + ".vtp"))) << part;
+  }
+  const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
+  EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
+  // The smooth label surface keeps the segmented MCL's volume.
+  const TriangleSurface mcl =
+      io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl"));
+  const TriangleSurface from_labels = io::read_surface(out / "labels_ligament.vtp");
+  EXPECT_TRUE(check_topology(from_labels).closed_manifold());
+  EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
+              0.05 * std::abs(signed_volume(mcl)));
+  expect_centerline_inside_between_attachments(out, from_labels, 2.0);
 }

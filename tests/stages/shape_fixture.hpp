@@ -27,7 +27,7 @@ inline VoxelisedShape voxelise(synthetic::Shape shape, double spacing)
   SurfaceQuery query(shape.surface);
   voxelize::Parameters parameters;
   parameters.spacing_mm = spacing;
-  Mask mask = voxelize::voxelize(query, parameters);
+  Mask mask = voxelize::voxelize(query.surface(), parameters);
   ScalarGrid distance = distance::signed_distance(query, mask);
   return {std::move(shape), std::move(query), std::move(mask), std::move(distance)};
 }

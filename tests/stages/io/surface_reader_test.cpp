@@ -4,6 +4,7 @@
 #include "stages/io/vtk_convert.hpp"
 #include "stages/synthetic/shapes.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <vtkOBJWriter.h>
 #include <vtkPLYWriter.h>
@@ -107,6 +108,49 @@ TEST(SurfaceReader, BadInputsAreClearErrors)
     FAIL() << "NaN accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SurfaceReader, TruncatedBinaryStlSaysSo)
+{
+  const TriangleSurface cylinder = synthetic::cylinder(3.0, 20.0, 32).surface;
+  const fs::path whole = write_with<vtkSTLWriter>(io::to_polydata(cylinder), "whole.stl");
+  const auto size = fs::file_size(whole);
+  const fs::path cut = scratch("cut.stl");
+  fs::copy_file(whole, cut, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut, size - 75); // one and a half triangles short
+  try {
+    io::read_surface(cut);
+    FAIL() << "truncated STL accepted";
+  } catch (const InputError& e) {
+    const std::string expected =
+        fmt::format("truncated binary STL: its header announces {} triangles ({} bytes) but the "
+                    "file holds {} bytes ({} whole triangles)",
+                    cylinder.F.rows(), size, size - 75, cylinder.F.rows() - 2);
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
+TEST(SurfaceReader, NonManifoldEdgeIsRejectedWithItsVertices)
+{
+  // A box with a closed tetrahedron hung on the edge of its first triangle: four triangles there.
+  TriangleSurface box = synthetic::box({0, 0, 0}, {1, 1, 1});
+  const int a = box.F(0, 0), b = box.F(0, 1);
+  const int w = static_cast<int>(box.V.rows()), x = w + 1;
+  box.V.conservativeResize(box.V.rows() + 2, 3);
+  box.V.row(w) << 0.5, -1.0, -1.0;
+  box.V.row(x) << 0.5, -1.5, -0.5;
+  box.F.conservativeResize(box.F.rows() + 4, 3);
+  box.F.bottomRows(4) << a, b, w, a, w, x, a, x, b, b, x, w;
+  try {
+    io::require_closed_manifold(box, "ligament surface");
+    FAIL() << "non-manifold surface accepted";
+  } catch (const InputError& e) {
+    const Eigen::Vector3d p = box.V.row(std::min(a, b)), q = box.V.row(std::max(a, b));
+    const std::string where =
+        fmt::format("vertices {} ({:.2f}, {:.2f}, {:.2f}) and {} ({:.2f}, {:.2f}, {:.2f}) mm",
+                    std::min(a, b), p.x(), p.y(), p.z(), std::max(a, b), q.x(), q.y(), q.z());
+    EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
   }
 }
 

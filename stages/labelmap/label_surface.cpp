@@ -1,0 +1,166 @@
+#include "stages/labelmap/label_surface.hpp"
+
+#include "common/error.hpp"
+#include "stages/geometry/surface_topology.hpp"
+#include "stages/io/vtk_convert.hpp"
+
+#include <vtkCleanPolyData.h>
+#include <vtkDiscreteFlyingEdges3D.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowedSincPolyDataFilter.h>
+
+#include <deque>
+
+namespace ligsim::labelmap {
+
+namespace {
+
+/// Labels each voxel of `on` with its connected component (0: not on), through 26 or 6
+/// neighbours; returns the component sizes (index 0 unused).
+std::vector<long> components(const Eigen::Vector3i& dims, const std::vector<std::uint8_t>& on,
+                             bool twenty_six, std::vector<int>& component)
+{
+  component.assign(on.size(), 0);
+  std::vector<long> sizes{0};
+  const auto index = [&](int i, int j, int k) {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(dims.x()) * (j + static_cast<std::size_t>(dims.y()) * k);
+  };
+  std::deque<Eigen::Vector3i> queue;
+  for (int k = 0; k < dims.z(); ++k)
+    for (int j = 0; j < dims.y(); ++j)
+      for (int i = 0; i < dims.x(); ++i) {
+        if (!on[index(i, j, k)] || component[index(i, j, k)] != 0)
+          continue;
+        const int id = static_cast<int>(sizes.size());
+        sizes.push_back(0);
+        component[index(i, j, k)] = id;
+        queue.emplace_back(i, j, k);
+        while (!queue.empty()) {
+          const Eigen::Vector3i v = queue.front();
+          queue.pop_front();
+          ++sizes.back();
+          for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int steps = std::abs(dx) + std::abs(dy) + std::abs(dz);
+                if (steps == 0 || (!twenty_six && steps > 1))
+                  continue;
+                const Eigen::Vector3i w = v + Eigen::Vector3i(dx, dy, dz);
+                if ((w.array() < 0).any() || (w.array() >= dims.array()).any())
+                  continue;
+                const std::size_t n = index(w.x(), w.y(), w.z());
+                if (on[n] && component[n] == 0) {
+                  component[n] = id;
+                  queue.push_back(w);
+                }
+              }
+        }
+      }
+  return sizes;
+}
+
+} // namespace
+
+std::vector<std::uint8_t> select_label(const LabelImage& image, int label, Selection* selection)
+{
+  std::vector<std::uint8_t> mask(image.labels.size(), 0);
+  for (std::size_t v = 0; v < mask.size(); ++v)
+    mask[v] = image.labels[v] == label ? 1 : 0;
+  std::vector<int> component;
+  const std::vector<long> sizes = components(image.dims, mask, true, component);
+  if (sizes.size() < 2)
+    fail("label {} does not occur in the label map", label);
+  const auto largest =
+      static_cast<int>(std::max_element(sizes.begin() + 1, sizes.end()) - sizes.begin());
+  Selection result;
+  result.label = label;
+  result.components = static_cast<int>(sizes.size()) - 1;
+  for (std::size_t v = 0; v < mask.size(); ++v)
+    if (mask[v] && component[v] != largest) {
+      mask[v] = 0;
+      ++result.dropped_voxels;
+    }
+  // Holes: background (6-connected) that does not reach the image border.
+  std::vector<std::uint8_t> background(mask.size());
+  for (std::size_t v = 0; v < mask.size(); ++v)
+    background[v] = mask[v] ? 0 : 1;
+  std::vector<int> pocket;
+  const std::vector<long> pocket_sizes = components(image.dims, background, false, pocket);
+  std::vector<bool> reaches_border(pocket_sizes.size(), false);
+  const Eigen::Vector3i& d = image.dims;
+  for (int k = 0; k < d.z(); ++k)
+    for (int j = 0; j < d.y(); ++j)
+      for (int i = 0; i < d.x(); ++i)
+        if (i == 0 || j == 0 || k == 0 || i == d.x() - 1 || j == d.y() - 1 || k == d.z() - 1)
+          reaches_border[static_cast<std::size_t>(pocket[image.index(i, j, k)])] = true;
+  for (std::size_t v = 0; v < mask.size(); ++v)
+    if (background[v] && !reaches_border[static_cast<std::size_t>(pocket[v])]) {
+      mask[v] = 1;
+      ++result.filled_hole_voxels;
+    }
+  for (std::uint8_t m : mask)
+    result.voxels += m;
+  if (selection != nullptr)
+    *selection = result;
+  return mask;
+}
+
+TriangleSurface label_surface(const LabelImage& image, int label, Selection* selection,
+                              int smoothing_iterations)
+{
+  const std::vector<std::uint8_t> mask = select_label(image, label, selection);
+  // In index space with one voxel of padding, so the surface closes at the image border.
+  const Eigen::Vector3i dims = image.dims + Eigen::Vector3i::Constant(2);
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetDimensions(dims.x(), dims.y(), dims.z());
+  volume->SetOrigin(-1.0, -1.0, -1.0);
+  volume->SetSpacing(1.0, 1.0, 1.0);
+  auto values = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  values->SetName("label");
+  values->SetNumberOfTuples(static_cast<vtkIdType>(dims.prod()));
+  values->FillValue(0);
+  for (int k = 0; k < image.dims.z(); ++k)
+    for (int j = 0; j < image.dims.y(); ++j)
+      for (int i = 0; i < image.dims.x(); ++i)
+        if (mask[image.index(i, j, k)])
+          values->SetValue((i + 1) + static_cast<vtkIdType>(dims.x()) *
+                                         ((j + 1) + static_cast<vtkIdType>(dims.y()) * (k + 1)),
+                           1);
+  volume->GetPointData()->SetScalars(values);
+
+  auto contour = vtkSmartPointer<vtkDiscreteFlyingEdges3D>::New();
+  contour->SetInputData(volume);
+  contour->SetValue(0, 1.0);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  auto smooth = vtkSmartPointer<vtkWindowedSincPolyDataFilter>::New();
+  smooth->SetInputConnection(contour->GetOutputPort());
+  smooth->SetNumberOfIterations(std::max(smoothing_iterations, 0));
+  smooth->SetPassBand(0.01); // removes the voxel staircase, keeps the shape
+  smooth->NormalizeCoordinatesOn();
+  smooth->BoundarySmoothingOff();
+  smooth->FeatureEdgeSmoothingOff();
+  smooth->NonManifoldSmoothingOn();
+  auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
+  triangles->SetInputConnection(smoothing_iterations > 0 ? smooth->GetOutputPort()
+                                                         : contour->GetOutputPort());
+  auto clean = vtkSmartPointer<vtkCleanPolyData>::New();
+  clean->SetInputConnection(triangles->GetOutputPort());
+  clean->Update();
+
+  TriangleSurface surface = io::from_polydata(clean->GetOutput());
+  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+    surface.V.row(v) = image.physical_point(surface.V.row(v).transpose()).transpose();
+  if (signed_volume(surface) < 0.0)
+    surface.F.col(1).swap(surface.F.col(2));
+  return surface;
+}
+
+} // namespace ligsim::labelmap
