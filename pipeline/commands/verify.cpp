@@ -6,6 +6,7 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "common/svg_plot.hpp"
+#include "sim/verify/cube_compression.hpp"
 #include "sim/verify/cube_verification.hpp"
 #include "sim/verify/stability.hpp"
 #include "sim/verify/sweep.hpp"
@@ -33,6 +34,8 @@ struct CubeOptions {
   double residual_tolerance = 1e-8;
   std::string linear = "direct";
   bool sweep = false;
+  bool compression = false;
+  int cells = 0; ///< compression on an n^3 structured cube instead of the reference mesh
 };
 
 /// The paper's Tables 1 and 2 (FEBio with augmented Lagrangian unless marked), for the note.
@@ -101,6 +104,76 @@ void run_sweep(const CubeOptions& options, const sim::FebioReference& reference)
   log_info(fmt::format("wrote {}, sweep.svg and sweep.md", (options.out / "sweep.csv").string()));
 }
 
+/// The compression cases, checked by equilibrium (no FEBio solution of them here).
+void run_compression(const CubeOptions& options, const sim::FebioReference& reference)
+{
+  RunSummary summary("verify cube --compression");
+  summary.inputs()["reference"] = options.reference.string();
+  summary.parameters()["load_steps"] = options.load_steps;
+  summary.parameters()["residual_tolerance"] = options.residual_tolerance;
+  summary.parameters()["cells"] = options.cells;
+  const std::vector<sim::FebioCase> cases = sim::cube_compression_cases(reference);
+  const std::set<std::string> wanted(options.cases.begin(), options.cases.end());
+  for (const std::string& name : wanted) {
+    bool known = false;
+    for (const sim::FebioCase& c : cases)
+      known = known || c.name == name;
+    if (!known)
+      fail("--cases: no compression case named '{}' (cmp_along_010_lnj, cmp_across_020_jm1, ...)",
+           name);
+  }
+  StageMeter read_meter;
+  const sim::FebioMesh mesh = options.cells > 0
+                                  ? sim::structured_cube(options.cells, reference.edge_mm)
+                                  : sim::read_febio_mesh(reference.mesh_file);
+  summary.add_stage("read", read_meter,
+                    {{"nodes", mesh.mesh.V.rows()}, {"elements", mesh.mesh.T.rows()}});
+  // On another mesh the total load (the stress) stays the reference mesh's.
+  const double load_scale =
+      options.cells > 0 ? 289.0 / static_cast<double>(mesh.top_nodes.size()) : 1.0;
+  const sim::NewtonSettings settings = cube_newton(options);
+  std::vector<sim::CubeCaseResult> results;
+  StageMeter solve_meter;
+  for (sim::FebioCase c : cases) {
+    if (!wanted.empty() && wanted.count(c.name) == 0)
+      continue;
+    c.force_per_top_node_n *= load_scale;
+    results.push_back(sim::run_cube_case(mesh, c, sim::CubeEnergy::matched, settings, Points(),
+                                         reference.edge_mm));
+    const sim::CubeCaseResult& r = results.back();
+    log_info(r.converged
+                 ? fmt::format("{}: relative residual {:.1e}, reactions balance to {:.1e}, "
+                               "{} Newton iterations in {} sub-steps, {:.2f} s{}{}",
+                               r.name, r.relative_residual, r.balance_error, r.newton_iterations,
+                               r.substeps, r.wall_s,
+                               r.converged_at_floor ? "; at the round-off floor: " + r.floor
+                                                    : std::string(),
+                               r.negative_eigenvalues > 0 ? "; " + r.instability : std::string())
+                 : fmt::format("{}: failed: {}", r.name, r.failure));
+  }
+  summary.add_stage("solve", solve_meter, {{"runs", results.size()}});
+  ensure_directory(options.out);
+  const nlohmann::json json = sim::cube_results_json(results);
+  write_text_atomically(options.out / "verify.json", json.dump(2) + "\n");
+  write_text_atomically(options.out / "verify.md",
+                        fmt::format("# Cube compression, checked by equilibrium\n\n{} tets, "
+                                    "FEBio's penalty energy (fiber convention weiss), bottom "
+                                    "fixed, the load on every top node pushing down. Relative "
+                                    "residual: free-DOF residual / load; reaction balance: |bottom "
+                                    "reactions + load| / load.\n\n",
+                                    mesh.mesh.T.rows()) +
+                            sim::cube_equilibrium_table(results));
+  summary.results() = json;
+  summary.write(options.out);
+  int failed = 0;
+  for (const sim::CubeCaseResult& r : results)
+    failed += r.converged ? 0 : 1;
+  log_info(fmt::format("wrote {} and verify.md", (options.out / "verify.json").string()));
+  if (failed > 0)
+    fail<SolverError>("{} of {} compression runs did not converge (see verify.md)", failed,
+                      results.size());
+}
+
 void run_cube(const CubeOptions& options)
 {
   if (!fs::is_directory(options.reference))
@@ -111,6 +184,10 @@ void run_cube(const CubeOptions& options)
   summary.parameters()["residual_tolerance"] = options.residual_tolerance;
   summary.parameters()["linear_solver"] = options.linear;
 
+  if (options.compression) {
+    run_compression(options, sim::read_febio_reference(options.reference));
+    return;
+  }
   StageMeter read_meter;
   const sim::FebioReference reference = sim::read_febio_reference(options.reference);
   const sim::FebioMesh mesh = sim::read_febio_mesh(reference.mesh_file);
@@ -237,6 +314,12 @@ void add_verify_command(CLI::App& app)
       ->capture_default_str();
   cube->add_flag("--sweep", options->sweep,
                  "error against run time over mesh sizes, tolerances and linear solvers");
+  cube->add_flag("--compression", options->compression,
+                 "compression cases 0.02-0.20 N per node along and across the fibers, checked "
+                 "by equilibrium");
+  cube->add_option("--cells", options->cells,
+                   "with --compression: an n^3 structured cube instead of the reference mesh, "
+                   "with the reference's total load (289 top nodes)");
   cube->callback([options] { run_cube(*options); });
 
   auto stability_options = std::make_shared<StabilityOptions>();

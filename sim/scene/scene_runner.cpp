@@ -148,7 +148,14 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                                   {"projected_elements", step.projected_elements},
                                   {"factorizations", step.factorizations},
                                   {"cg_iterations", step.linear_iterations},
+                                  {"indefinite_iterations", step.saddle_iterations},
+                                  {"converged_at_floor", step.converged_at_floor},
+                                  {"negative_eigenvalues", step.negative_eigenvalues},
                                   {"wall_s", step.wall_s}};
+          if (step.converged_at_floor)
+            entry["floor"] = step.floor;
+          if (!step.instability.empty())
+            entry["instability"] = step.instability;
           entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                               fmt::format("{},{}", step.step, step.load_factor));
           if (contact)
@@ -163,6 +170,7 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     run.success = result.converged;
     run.failure = result.failure;
     solve_figures = {{"converged", result.converged},
+                     {"stop_kind", result.stop_kind},
                      {"newton_iterations", result.newton_iterations},
                      {"cutbacks", result.cutbacks},
                      {"projected_elements", result.projected_elements},

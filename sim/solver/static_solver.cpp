@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
+#include "sim/solver/substep_controller.hpp"
 
 #include <fmt/format.h>
 
@@ -18,6 +19,9 @@ constexpr int max_line_search_steps = 30;
 constexpr double armijo = 1e-4;
 /// Relative size of an energy change that round-off can produce in the element sum.
 constexpr double energy_round_off = 1e-12;
+/// Trials of a saddle step's residual line search (steps 1, 1/2, 1/4) before falling back to
+/// the projected step: far from a saddle equilibrium the unprojected step only crawls.
+constexpr int max_residual_search_steps = 3;
 
 } // namespace
 
@@ -54,6 +58,10 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
     , m_rest(body.rest_positions())
     , m_external(m_dofs.external_forces(conditions))
     , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+    , m_tangent(body, m_dofs)
+    , m_convergence(
+          settings.residual_tolerance, settings.energy_tolerance,
+          (body.mesh().V.colwise().maxCoeff() - body.mesh().V.colwise().minCoeff()).norm())
 {
   if (settings.load_steps < 1)
     fail("solver: load_steps must be at least 1, got {}", settings.load_steps);
@@ -123,6 +131,16 @@ Eigen::VectorXd StaticSolver::full_part(const Eigen::VectorXd& direction) const
   return full;
 }
 
+double StaticSolver::relative_residual(const Eigen::VectorXd& gradient, double t1) const
+{
+  double free2 = 0.0;
+  double reaction2 = 0.0;
+  for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
+    (m_dofs.is_free(dof) ? free2 : reaction2) += gradient(dof) * gradient(dof);
+  return std::sqrt(free2) /
+         std::max({(t1 * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+}
+
 std::string StaticSolver::describe_inversion(const BodyEnergy& energy) const
 {
   if (energy.first_inverted < 0)
@@ -131,8 +149,10 @@ std::string StaticSolver::describe_inversion(const BodyEnergy& energy) const
 }
 
 bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
-                                    Eigen::VectorXd& direction, StepReport& report)
+                                    Eigen::VectorXd& direction, StepReport& report,
+                                    bool allow_saddle, bool& saddle)
 {
+  saddle = false;
   bool project = m_settings.projection == PsdProjection::always;
   std::vector<NodeBlock> blocks;
   if (m_extra)
@@ -149,8 +169,19 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
       return true;
     if (!project && m_settings.projection == PsdProjection::automatic &&
         (solve.indefinite || solve.ok)) {
-      project = true;
       ++report.indefinite_iterations;
+      // The unprojected Newton step converges quadratically to a saddle equilibrium (a state
+      // past a bifurcation), where the projected one crawls or walks away from it.
+      // The factorised tangent is the body's alone: no saddle step with an extra potential.
+      if (allow_saddle && !m_extra && m_tangent.factorize(x)) {
+        direction = m_tangent.solve(rhs);
+        ++report.factorizations;
+        if (direction.allFinite()) {
+          saddle = true;
+          return true;
+        }
+      }
+      project = true;
       continue;
     }
     if (solve.indefinite)
@@ -165,6 +196,13 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
       m_failure = "the Newton direction does not decrease the energy";
     return false;
   }
+}
+
+std::optional<StabilityMode> StaticSolver::stability_mode(const Eigen::VectorXd& x)
+{
+  if (!m_tangent.factorize(x))
+    return std::nullopt;
+  return m_tangent.lowest_mode(free_part(m_external));
 }
 
 bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report)
@@ -198,7 +236,8 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   }
   const Eigen::VectorXd rhs = -free_part(at.gradient + coupling);
   Eigen::VectorXd predictor;
-  if (!newton_direction(x, m_converged_t, rhs, predictor, report))
+  bool saddle = false;
+  if (!newton_direction(x, m_converged_t, rhs, predictor, report, true, saddle))
     predictor = Eigen::VectorXd::Zero(rhs.size()); // the prescribed move alone, checked below
 
   const auto& free_dofs = m_dofs.free_dofs();
@@ -223,13 +262,73 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   return false;
 }
 
+bool StaticSolver::line_search(const Eigen::VectorXd& x, const Evaluation& current,
+                               const Eigen::VectorXd& direction, bool saddle, double t1,
+                               StepReport& report, Eigen::VectorXd& x_trial, Evaluation& trial,
+                               double& alpha)
+{
+  const auto& free_dofs = m_dofs.free_dofs();
+  const Eigen::VectorXd residual = free_part(current.gradient);
+  const double slope = residual.dot(direction); // < 0 for an energy step
+  auto step_to = [&](double a) {
+    x_trial = x;
+    for (std::size_t f = 0; f < free_dofs.size(); ++f)
+      x_trial(free_dofs[f]) += a * direction(static_cast<Eigen::Index>(f));
+    evaluate(x_trial, t1, trial);
+  };
+  // An extra potential bounds the step: no node crosses a contact surface on the way.
+  alpha = m_extra ? std::min(1.0, m_extra->max_step(x, full_part(direction), t1)) : 1.0;
+  if (saddle) {
+    // The Newton step decreases |r|^2 at the rate 2 |r|^2 whatever the inertia of K.
+    const double norm = residual.norm();
+    for (int k = 0; k < max_residual_search_steps; ++k, alpha *= 0.5) {
+      step_to(alpha);
+      if (std::isfinite(trial.total_energy) &&
+          free_part(trial.gradient).norm() <= (1.0 - armijo * alpha) * norm)
+        return true;
+      ++report.line_search_backtracks;
+    }
+    return false;
+  }
+
+  // Backtracking line search on the total energy.
+  // Round-off in the element sum scales with the material's energy per volume, even where
+  // the strain energy itself is near zero (rigid motions).
+  const double energy_scale =
+      std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
+  BodyEnergy last_inversion;
+  for (int k = 0; k < max_line_search_steps; ++k) {
+    step_to(alpha);
+    if (std::isfinite(trial.total_energy) && alpha > 0.0) {
+      const double change = trial.total_energy - current.total_energy;
+      if (change <= armijo * alpha * slope)
+        return true;
+      if (std::abs(change) <= energy_round_off * energy_scale &&
+          free_part(trial.gradient).norm() < residual.norm())
+        return true; // the energy is flat to round-off: accept a smaller residual
+      // Minimiser of the quadratic through E(0), E'(0) and E(alpha), kept in [0.1, 0.5] alpha.
+      const double curvature = change - alpha * slope;
+      const double next = curvature > 0.0 ? -slope * alpha * alpha / (2.0 * curvature) : 0.5;
+      alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+    } else {
+      last_inversion = trial.body;
+      alpha *= 0.5;
+    }
+    ++report.line_search_backtracks;
+  }
+  m_failure = last_inversion.first_inverted >= 0
+                  ? fmt::format("the line search found no admissible step: {}",
+                                describe_inversion(last_inversion))
+                  : "the line search found no energy decrease";
+  return false;
+}
+
 bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
 {
   if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
     return false;
   const int pushed = m_extra ? m_extra->make_admissible(x, t1) : 0;
 
-  const auto& free_dofs = m_dofs.free_dofs();
   Evaluation current;
   evaluate(x, t1, current);
   if (!std::isfinite(current.body.energy)) {
@@ -245,102 +344,69 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
                 "obstacle's distance band)";
     return false;
   }
-  double first_energy_change = 0.0;
-  double last_energy_change = 0.0;
-  for (int iteration = 0;; ++iteration) {
+  m_convergence.restart();
+  int iterations = 0;
+  for (;;) {
     const Eigen::VectorXd residual = free_part(current.gradient);
     if (!residual.allFinite()) {
       m_failure = "the internal forces are not finite";
       return false;
     }
-    double reaction_norm2 = 0.0;
-    for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
-      if (!m_dofs.is_free(dof))
-        reaction_norm2 += current.gradient(dof) * current.gradient(dof);
-    const double scale =
-        std::max({(t1 * m_external).norm(), std::sqrt(reaction_norm2), m_force_floor});
-    report.relative_residual = residual.norm() / scale;
-    const bool small_residual = report.relative_residual <= m_settings.residual_tolerance ||
-                                residual.norm() <= m_force_floor;
-    const double energy_tolerance = m_settings.energy_tolerance > 0.0
-                                        ? m_settings.energy_tolerance
-                                        : m_settings.residual_tolerance;
-    const bool small_energy_change =
-        iteration == 0 || last_energy_change <= energy_tolerance * first_energy_change;
-    if (small_residual && small_energy_change) {
+    report.relative_residual = relative_residual(current.gradient, t1);
+    const ConvergenceVerdict verdict =
+        m_convergence.verdict(report.relative_residual, residual.norm() <= m_force_floor);
+    if (verdict == ConvergenceVerdict::converged_at_floor) {
+      report.converged_at_floor = true;
+      report.floor = m_convergence.floor_summary();
+    }
+    if (verdict != ConvergenceVerdict::iterate) {
       m_converged_t = t1;
       return true;
     }
-    if (iteration == m_settings.max_iterations) {
+    if (iterations == m_settings.max_iterations) {
       m_failure = fmt::format("no convergence in {} Newton iterations (relative residual {:.3g})",
-                              iteration, report.relative_residual);
+                              iterations, report.relative_residual);
       if (report.indefinite_iterations > 0)
-        m_failure += fmt::format("; the stiffness matrix was indefinite in {} iterations: the "
-                                 "equilibrium is unstable at this load (buckling?)",
+        m_failure += fmt::format("; the stiffness matrix was indefinite in {} iterations",
                                  report.indefinite_iterations);
       return false;
     }
+    ++iterations;
     ++report.iterations;
 
     Eigen::VectorXd direction;
-    if (!newton_direction(x, t1, -residual, direction, report))
-      return false;
-    const double slope = residual.dot(direction); // < 0
-
-    // Backtracking line search on the total energy.
-    // Round-off in the element sum scales with the material's energy per volume, even where
-    // the strain energy itself is near zero (rigid motions).
-    const double energy_scale =
-        std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit;
-    // An extra potential bounds the step: no node crosses a contact surface on the way.
-    double alpha = m_extra ? std::min(1.0, m_extra->max_step(x, full_part(direction), t1)) : 1.0;
-    bool accepted = false;
-    Evaluation trial;
     Eigen::VectorXd x_trial;
-    BodyEnergy last_inversion;
-    for (int k = 0; k < max_line_search_steps; ++k) {
-      x_trial = x;
-      for (std::size_t f = 0; f < free_dofs.size(); ++f)
-        x_trial(free_dofs[f]) += alpha * direction(static_cast<Eigen::Index>(f));
-      evaluate(x_trial, t1, trial);
-      if (std::isfinite(trial.total_energy) && alpha > 0.0) {
-        const double change = trial.total_energy - current.total_energy;
-        if (change <= armijo * alpha * slope) {
-          accepted = true;
-        } else if (std::abs(change) <= energy_round_off * energy_scale &&
-                   free_part(trial.gradient).norm() < residual.norm()) {
-          accepted = true; // the energy is flat to round-off: accept a smaller residual
-        }
-        if (accepted)
-          break;
-        // Minimiser of the quadratic through E(0), E'(0) and E(alpha), kept in [0.1, 0.5] alpha.
-        const double curvature = change - alpha * slope;
-        const double next = curvature > 0.0 ? -slope * alpha * alpha / (2.0 * curvature) : 0.5;
-        alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
-      } else {
-        last_inversion = trial.body;
-        alpha *= 0.5;
-      }
-      ++report.line_search_backtracks;
-    }
-    if (!accepted) {
-      m_failure = last_inversion.first_inverted >= 0
-                      ? fmt::format("the line search found no admissible step: {}",
-                                    describe_inversion(last_inversion))
-                      : "the line search found no energy decrease";
+    Evaluation trial;
+    double alpha = 1.0;
+    bool saddle = false;
+    if (!newton_direction(x, t1, -residual, direction, report, true, saddle))
       return false;
+    bool moved = line_search(x, current, direction, saddle, t1, report, x_trial, trial, alpha);
+    if (saddle && !moved) {
+      // The unprojected step made no progress on the residual: minimise the energy instead.
+      if (!newton_direction(x, t1, -residual, direction, report, false, saddle))
+        return false;
+      moved = line_search(x, current, direction, false, t1, report, x_trial, trial, alpha);
     }
+    if (!moved)
+      return false;
+    report.saddle_iterations += saddle ? 1 : 0;
     if (m_settings.verbose)
-      log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g} "
+      log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g}{} "
                            "({} projected elements, {} factorisations, {} CG iterations so far)",
-                           t1, iteration + 1, report.relative_residual, alpha,
-                           report.projected_elements, report.factorizations,
-                           report.linear_iterations));
-    last_energy_change = std::abs(alpha * slope);
-    if (iteration == 0)
-      first_energy_change = last_energy_change;
+                           t1, iterations, report.relative_residual, alpha,
+                           saddle ? " (indefinite Newton)" : "", report.projected_elements,
+                           report.factorizations, report.linear_iterations));
+    IterationFigures figures;
+    figures.energy_change = std::abs(alpha * residual.dot(direction));
+    figures.energy_round_off =
+        energy_round_off *
+        (std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit);
+    figures.displacement_step_mm = direction.lpNorm<Eigen::Infinity>();
     x.swap(x_trial);
     std::swap(current, trial);
+    figures.relative_residual = relative_residual(current.gradient, t1);
+    m_convergence.record(figures);
   }
 }
 
@@ -354,49 +420,74 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
   }
   const std::vector<double> targets = step_targets();
   const int steps = static_cast<int>(targets.size());
+  auto add_totals = [&](const StepReport& report) {
+    result.newton_iterations += report.iterations;
+    result.projected_elements += report.projected_elements;
+    result.linear_iterations += report.linear_iterations;
+    result.factorizations += report.factorizations;
+  };
   double t = 0.0;
-  double carried_dt = 1.0; // the last successful sub-step length, reused by the next step
+  SubstepController substeps; // carried from one output step to the next
   for (int step = 1; step <= steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     StepReport report;
     report.step = step;
     const double t_end = targets[static_cast<std::size_t>(step) - 1];
-    const double nominal = t_end - t;
-    const bool in_place = nominal <= 1e-14; // equilibrium at the current load factor
-    double dt = in_place ? 0.0 : std::min(carried_dt, nominal);
+    const bool in_place = t_end - t <= 1e-14; // equilibrium at the current load factor
+    int consecutive_cutbacks = 0;
     for (bool first = true; first || t < t_end - 1e-14; first = false) {
-      const double t_next = in_place ? t_end : std::min(t_end, t + dt);
+      const double t_next = in_place ? t_end : substeps.next_target(t, t_end);
       const Eigen::VectorXd saved = x;
+      const int iterations_before = report.iterations;
       m_failure.clear();
       ++report.substeps;
+      const bool floor_before = report.converged_at_floor;
       if (advance(x, t_next, report)) {
         t = t_next;
-        dt = std::min(nominal, 2.0 * dt);
         if (!in_place)
-          carried_dt = dt;
+          substeps.accepted(report.iterations - iterations_before);
+        consecutive_cutbacks = 0;
         continue;
       }
       x = saved;
+      report.converged_at_floor = floor_before;
       ++report.cutbacks;
       ++result.cutbacks;
-      dt *= 0.5;
-      if (report.cutbacks > m_settings.max_cutbacks || in_place) {
+      ++consecutive_cutbacks;
+      substeps.rejected(t_next - t);
+      if (consecutive_cutbacks > m_settings.max_cutbacks || in_place) {
+        // A step that met an indefinite stiffness stops at a critical point of the path when
+        // the tangent at the last converged state is near singular or already indefinite.
+        if (report.indefinite_iterations > 0)
+          result.critical_mode = stability_mode(x);
+        result.critical_load_factor = t;
+        result.stop_kind = result.critical_mode ? result.critical_mode->kind() : "failed step";
         result.failure = fmt::format("load step {} (load factor {:.4g}) failed after {} "
                                      "cut-backs: {}",
                                      step, t_next, report.cutbacks - 1, m_failure);
+        if (result.critical_mode)
+          result.failure +=
+              fmt::format(". The path meets a {} between load factors {:.4g} "
+                          "and {:.4g}: at {:.4g}, {}",
+                          result.stop_kind, t, t_next, t, result.critical_mode->describe());
         report.wall_s = seconds_since(step_start);
         report.load_factor = t;
         result.steps.push_back(report);
-        result.newton_iterations += report.iterations;
-        result.projected_elements += report.projected_elements;
-        result.linear_iterations += report.linear_iterations;
-        result.factorizations += report.factorizations;
+        add_totals(report);
         result.wall_s = seconds_since(start);
         return result;
       }
     }
     report.converged = true;
     report.load_factor = t_end;
+    if (report.indefinite_iterations > 0) {
+      // Equilibrium reached through an indefinite stiffness: stable or not?
+      if (const std::optional<StabilityMode> mode = stability_mode(x)) {
+        report.negative_eigenvalues = mode->negative_eigenvalues;
+        if (mode->negative_eigenvalues > 0)
+          report.instability = "unstable equilibrium, past a " + mode->describe();
+      }
+    }
     Eigen::VectorXd gradient;
     report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
     gradient -= t_end * m_external;
@@ -404,10 +495,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       m_extra->energy(x, t_end, &gradient);
     std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
     report.wall_s = seconds_since(step_start);
-    result.newton_iterations += report.iterations;
-    result.projected_elements += report.projected_elements;
-    result.linear_iterations += report.linear_iterations;
-    result.factorizations += report.factorizations;
+    add_totals(report);
     result.steps.push_back(report);
     if (on_step)
       on_step(report, x, gradient);

@@ -1,15 +1,20 @@
 #pragma once
-/// @brief Quasi-static equilibrium: Newton's method with a line search on the total energy,
-/// load stepping with automatic cut-back, convergence on the relative residual and the energy.
+/// @brief Quasi-static equilibrium: Newton's method with a line search on the total energy
+/// (on the residual norm where the stiffness is indefinite and the equilibrium a saddle),
+/// automatic sub-stepping inside the user's load steps, convergence on the relative residual
+/// and the energy or at the round-off floor, and a limit-point / bifurcation diagnostic.
 
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 #include "sim/solver/linear_solver.hpp"
+#include "sim/solver/newton_convergence.hpp"
+#include "sim/solver/tangent_inertia.hpp"
 
 #include <Eigen/Core>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +22,9 @@ namespace ligsim::sim {
 
 /// When element stiffnesses are projected to positive semi-definite.
 enum class PsdProjection {
-  automatic, ///< only for a Newton step whose matrix proved indefinite
+  /// only for a Newton step whose matrix proved indefinite, and only where the unprojected
+  /// Newton step (L D L^T, line search on the residual) makes no progress
+  automatic,
   always,
   never, ///< an indefinite matrix fails the step (and triggers a cut-back)
 };
@@ -39,7 +46,7 @@ struct NewtonSettings {
   LinearSolverKind linear_solver = LinearSolverKind::direct;
   PcgSettings pcg;
   PsdProjection projection = PsdProjection::automatic;
-  int max_cutbacks = 10; ///< halvings of one load step before giving up
+  int max_cutbacks = 10; ///< consecutive halvings of a sub-step before giving up
   bool verbose = false;  ///< one line per Newton iteration on stderr
 };
 
@@ -56,7 +63,16 @@ struct StepReport {
   int projected_elements = 0;    ///< element stiffness projections, summed over iterations
   int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
   int line_search_backtracks = 0;
+  int saddle_iterations = 0; ///< iterations by the unprojected (indefinite) Newton step
   double relative_residual = 0.0;
+  /// Converged at the round-off floor (residual stagnating a hair above the tolerance);
+  /// `floor` gives the figures.
+  bool converged_at_floor = false;
+  std::string floor;
+  /// Negative eigenvalues of the tangent stiffness at the converged state, counted where a
+  /// step met an indefinite stiffness (0 otherwise): > 0 is an unstable equilibrium.
+  int negative_eigenvalues = 0;
+  std::string instability;       ///< the mode, where negative_eigenvalues > 0
   double strain_energy_mj = 0.0; ///< N mm
   double min_j = 1.0;
   int min_j_element = -1;
@@ -66,6 +82,12 @@ struct StepReport {
 struct StaticResult {
   bool converged = false;
   std::string failure; ///< why it stopped, naming the element where one is to blame
+  /// How a failure stopped: "failed step" (no convergence), or a critical point of the path met
+  /// between the last converged load factor and the failed one: "limit point" (the mode moves
+  /// along the load) or "bifurcation" (the mode is orthogonal to it).
+  std::string stop_kind;
+  std::optional<StabilityMode> critical_mode;
+  double critical_load_factor = 0.0; ///< the last converged load factor before it
   std::vector<StepReport> steps;
   int newton_iterations = 0;
   int cutbacks = 0;
@@ -111,11 +133,24 @@ private:
   bool advance(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Moves the prescribed DOFs to their targets at t1, the free ones by the linear predictor.
   bool move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report);
-  /// Newton direction for the free DOFs; handles projection. False when none is found.
+  /// Newton direction for the free DOFs; handles projection. With `allow_saddle`, an
+  /// indefinite stiffness gives the unprojected Newton step (`saddle` set). False when none is
+  /// found.
   bool newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
-                        Eigen::VectorXd& direction, StepReport& report);
+                        Eigen::VectorXd& direction, StepReport& report, bool allow_saddle,
+                        bool& saddle);
+  /// Backtracking along `direction` from `current` at x: on the total energy (Armijo), or for
+  /// a saddle step on the residual norm. Sets x_trial, trial, alpha; false when no step is
+  /// admissible (m_failure says why for an energy search).
+  bool line_search(const Eigen::VectorXd& x, const Evaluation& current,
+                   const Eigen::VectorXd& direction, bool saddle, double t1, StepReport& report,
+                   Eigen::VectorXd& x_trial, Evaluation& trial, double& alpha);
+  /// The eigenpair nearest zero of the tangent at x, if it can be factorised.
+  std::optional<StabilityMode> stability_mode(const Eigen::VectorXd& x);
   void evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const;
   Eigen::VectorXd free_part(const Eigen::VectorXd& full) const;
+  /// |free part of the gradient| / max(|load at t1|, |reactions|, force floor).
+  double relative_residual(const Eigen::VectorXd& gradient, double t1) const;
   std::string describe_inversion(const BodyEnergy& energy) const;
   /// The free part of `direction` as a full-length vector (prescribed entries zero).
   Eigen::VectorXd full_part(const Eigen::VectorXd& direction) const;
@@ -127,6 +162,8 @@ private:
   Eigen::VectorXd m_rest;
   Eigen::VectorXd m_external; ///< at load factor 1
   StiffnessSolver m_linear;
+  TangentInertia m_tangent;
+  NewtonConvergence m_convergence;
   std::vector<int> m_boundary_elements; ///< elements with a prescribed DOF
   double m_force_floor = 0.0;           ///< absolute residual below which any state converges
   double m_energy_unit = 0.0;           ///< mu V: the scale of energy round-off, N mm

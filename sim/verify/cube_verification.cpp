@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 
 namespace ligsim::sim {
@@ -57,7 +58,9 @@ CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEner
   const BoundaryConditions conditions = cube_conditions(c, mesh.bottom_nodes, mesh.top_nodes);
   StaticSolver solver(body, conditions, settings);
   Eigen::VectorXd x = body.rest_positions();
-  const StaticResult solved = solver.solve(x);
+  Eigen::VectorXd residual;
+  const StaticResult solved = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd& r) { residual = r; });
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   result.factorizations = solved.factorizations;
@@ -66,10 +69,29 @@ CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEner
   result.failure = solved.failure;
   result.newton_iterations = solved.newton_iterations;
   result.projected_elements = solved.projected_elements;
+  for (const StepReport& step : solved.steps) {
+    result.substeps += step.substeps;
+    result.saddle_iterations += step.saddle_iterations;
+    if (step.converged_at_floor) {
+      result.converged_at_floor = true;
+      result.floor = step.floor;
+    }
+    result.negative_eigenvalues = step.negative_eigenvalues;
+    result.instability = step.instability;
+  }
+  result.cutbacks = solved.cutbacks;
   if (x_out)
     *x_out = x;
   if (!solved.converged)
     return result;
+
+  // Equilibrium: free-DOF residual, and the bottom reactions against the total load.
+  const Eigen::Vector3d load = c.force_per_top_node_n * static_cast<double>(mesh.top_nodes.size());
+  double free2 = 0.0;
+  for (int dof : solver.dofs().free_dofs())
+    free2 += residual(dof) * residual(dof);
+  result.relative_residual = std::sqrt(free2) / load.norm();
+  result.balance_error = (reaction_forces(conditions, residual)[0] + load).norm() / load.norm();
 
   const Eigen::VectorXd rest = body.rest_positions();
   double top_uz = 0.0;
@@ -127,7 +149,18 @@ nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results)
                             {"factorizations", r.factorizations},
                             {"cg_iterations", r.cg_iterations},
                             {"load_steps", r.load_steps},
-                            {"projected_elements", r.projected_elements}};
+                            {"projected_elements", r.projected_elements},
+                            {"relative_residual", r.relative_residual},
+                            {"balance_error", r.balance_error},
+                            {"substeps", r.substeps},
+                            {"cutbacks", r.cutbacks},
+                            {"saddle_iterations", r.saddle_iterations},
+                            {"converged_at_floor", r.converged_at_floor},
+                            {"negative_eigenvalues", r.negative_eigenvalues}};
+    if (r.converged_at_floor)
+      entry["floor"] = r.floor;
+    if (!r.instability.empty())
+      entry["instability"] = r.instability;
     if (!r.converged) {
       entry["failure"] = r.failure;
       for (const char* key :
@@ -149,6 +182,31 @@ std::string percent(double value)
 }
 
 } // namespace
+
+std::string cube_equilibrium_table(const std::vector<CubeCaseResult>& results)
+{
+  std::string table =
+      "| case | energy | avg top uz mm | vol. change | relative residual | reaction "
+      "balance | Newton it. | sub-steps | cut-backs | indefinite it. | wall s | "
+      "stability |\n"
+      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+      "| --- |\n";
+  for (const CubeCaseResult& r : results) {
+    if (!r.converged) {
+      table += fmt::format("| {} | {} | failed: {} |\n", r.name, to_string(r.energy), r.failure);
+      continue;
+    }
+    std::string stability = r.negative_eigenvalues > 0 ? r.instability : std::string("stable");
+    if (r.converged_at_floor)
+      stability += "; converged at the round-off floor: " + r.floor;
+    table += fmt::format("| {} | {} | {:.5f} | {:+.2f} % | {:.1e} | {:.1e} | {} | {} | {} | {} | "
+                         "{:.2f} | {} |\n",
+                         r.name, to_string(r.energy), r.avg_top_uz_mm, r.volume_change_pct,
+                         r.relative_residual, r.balance_error, r.newton_iterations, r.substeps,
+                         r.cutbacks, r.saddle_iterations, r.wall_s, stability);
+  }
+  return table;
+}
 
 std::string cube_results_table(const std::vector<CubeCaseResult>& results)
 {

@@ -44,6 +44,18 @@ struct CubeCaseResult {
   int cg_iterations = 0;
   int load_steps = 0;
   int projected_elements = 0;
+  /// Equilibrium of the answer: |free-DOF residual| / |load| and |reactions + load| / |load|.
+  double relative_residual = 0.0;
+  double balance_error = 0.0;
+  int substeps = 0;
+  int cutbacks = 0;
+  int saddle_iterations = 0;       ///< Newton iterations with an indefinite tangent
+  bool converged_at_floor = false; ///< some step stopped at the round-off floor
+  std::string floor;               ///< its figures
+  /// Negative eigenvalues of the tangent at the answer (counted where a step met an
+  /// indefinite stiffness): > 0 is an unstable equilibrium, described by `instability`.
+  int negative_eigenvalues = 0;
+  std::string instability;
 };
 
 /// Material of `c` for the chosen energy.
@@ -66,5 +78,8 @@ nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results);
 
 /// Markdown table in the layout of the paper's Tables 1 and 2, with FEBio's wall time.
 std::string cube_results_table(const std::vector<CubeCaseResult>& results);
+
+/// Markdown table of cases without a reference: equilibrium figures and stability.
+std::string cube_equilibrium_table(const std::vector<CubeCaseResult>& results);
 
 } // namespace ligsim::sim

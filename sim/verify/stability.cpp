@@ -99,6 +99,8 @@ StabilityResult run_setup(const CubeSetup& setup)
       result.converged = run.converged;
       result.diagnostic = run.failure;
       result.iterations = run.newton_iterations;
+      if (run.converged && !run.steps.empty() && run.steps.back().negative_eigenvalues > 0)
+        result.diagnostic = run.steps.back().instability; // converged, but unstable
     }
     result.min_j = body.min_j(x).first;
     const Eigen::VectorXd rest = body.rest_positions();

@@ -122,6 +122,19 @@ TriangleSurface read_surface(const fs::path& file,
            p[2]);
   }
 
+  // VTK's readers pass face indices through unchecked (an OBJ face naming vertex 23333 of 3);
+  // the filters below would read past the points.
+  const vtkIdType point_count = raw->GetNumberOfPoints();
+  for (vtkIdType c = 0; c < raw->GetNumberOfCells(); ++c) {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    raw->GetCellPoints(c, size, ids);
+    for (vtkIdType k = 0; k < size; ++k)
+      if (ids[k] < 0 || ids[k] >= point_count)
+        fail("'{}': face {} refers to vertex {}, but the file has {} vertices", file.string(), c,
+             ids[k], point_count);
+  }
+
   auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
   triangles->SetInputData(raw);
   triangles->PassVertsOff();
