@@ -1,6 +1,7 @@
 #include "sim/verify/contact_stability.hpp"
 
 #include "common/error.hpp"
+#include "common/resources.hpp"
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/contact_potential.hpp"
 #include "sim/contact/contact_surface.hpp"
@@ -124,7 +125,7 @@ StabilityResult run_case(const ContactCase& c)
     result.diagnostic = e.what();
     result.outcome = "diagnostic";
   }
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_s = seconds_since(start);
   return result;
 }
 

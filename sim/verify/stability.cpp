@@ -1,6 +1,7 @@
 #include "sim/verify/stability.hpp"
 
 #include "common/error.hpp"
+#include "common/resources.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/implicit_euler.hpp"
@@ -124,7 +125,7 @@ StabilityResult run_setup(const CubeSetup& setup)
     result.diagnostic = e.what();
     result.outcome = "diagnostic";
   }
-  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.wall_s = seconds_since(start);
   return result;
 }
 
