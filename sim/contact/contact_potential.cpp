@@ -113,11 +113,9 @@ double ContactPotential::distance(std::size_t o, const Eigen::Vector3d& p, doubl
   return m_obstacles[o].field->sample(pose(o, t).to_local(p), false).distance_mm;
 }
 
-double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const
+template <class Visit>
+bool ContactPotential::for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit) const
 {
-  const double d_hat = m_settings.d_hat_mm;
-  const double kappa = m_settings.stiffness_mpa_per_mm;
-  double total = 0.0;
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
     for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
@@ -126,45 +124,49 @@ double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::Vecto
       if (!maybe_near(o, i, p))
         continue;
       const DistanceSample& s = pair_sample(o, i, p);
-      const BarrierValue b = ipc_barrier(s.distance_mm, d_hat);
-      if (!std::isfinite(b.value))
-        return INFINITY;
-      total += kappa * pair.area * b.value;
-      if (gradient && b.first != 0.0)
-        gradient->segment<3>(3 * pair.node) +=
-            kappa * pair.area * b.first * (at.rotation * s.gradient);
+      if (!visit(pair, at, s, ipc_barrier(s.distance_mm, m_settings.d_hat_mm)))
+        return false;
     }
   }
-  return total;
+  return true;
+}
+
+double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const
+{
+  const double kappa = m_settings.stiffness_mpa_per_mm;
+  double total = 0.0;
+  const bool finite = for_each_near_pair(
+      x, t, [&](const Pair& pair, const Pose& at, const DistanceSample& s, const BarrierValue& b) {
+        if (!std::isfinite(b.value))
+          return false;
+        total += kappa * pair.area * b.value;
+        if (gradient && b.first != 0.0)
+          gradient->segment<3>(3 * pair.node) +=
+              kappa * pair.area * b.first * (at.rotation * s.gradient);
+        return true;
+      });
+  return finite ? total : INFINITY;
 }
 
 void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool project,
                                      std::vector<NodeBlock>& blocks) const
 {
-  const double d_hat = m_settings.d_hat_mm;
   const double kappa = m_settings.stiffness_mpa_per_mm;
-  for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
-    const Pose at = pose(o, t);
-    for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
-      const Pair& pair = m_pairs[o][i];
-      const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      if (!maybe_near(o, i, p))
-        continue;
-      const DistanceSample& s = pair_sample(o, i, p);
-      const BarrierValue b = ipc_barrier(s.distance_mm, d_hat);
-      if (b.second == 0.0 && b.first == 0.0)
-        continue;
-      const Eigen::Vector3d g = at.rotation * s.gradient;
-      NodeBlock block;
-      block.node = pair.node;
-      block.block = kappa * pair.area *
-                    (b.second * g * g.transpose() +
-                     b.first * (at.rotation * s.hessian * at.rotation.transpose()));
-      if (project)
-        project_to_psd(block.block);
-      blocks.push_back(block);
-    }
-  }
+  for_each_near_pair(
+      x, t, [&](const Pair& pair, const Pose& at, const DistanceSample& s, const BarrierValue& b) {
+        if (b.second == 0.0 && b.first == 0.0)
+          return true;
+        const Eigen::Vector3d g = at.rotation * s.gradient;
+        NodeBlock block;
+        block.node = pair.node;
+        block.block = kappa * pair.area *
+                      (b.second * g * g.transpose() +
+                       b.first * (at.rotation * s.hessian * at.rotation.transpose()));
+        if (project)
+          project_to_psd(block.block);
+        blocks.push_back(block);
+        return true;
+      });
 }
 
 void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t,

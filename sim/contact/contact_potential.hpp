@@ -99,6 +99,10 @@ private:
   /// The field at local point p for pair i of obstacle o, reused when p has not moved (energy,
   /// gradient and Hessian of one state sample once).
   const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+  /// Calls `visit(pair, pose, sample, barrier)` for every pair that may be within d_hat of its
+  /// obstacle at (x, t); stops and returns false as soon as `visit` returns false.
+  template <class Visit>
+  bool for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit) const;
 
   int m_node_count = 0;
   std::vector<ContactObstacle> m_obstacles;

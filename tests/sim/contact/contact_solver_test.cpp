@@ -37,6 +37,29 @@ ContactPotential boundary_contact(const ligsim::TetMesh& mesh, const BoundaryCon
                           std::move(obstacles), settings);
 }
 
+/// A quarter block on symmetry planes x = 0 and y = 0, pushed down by `total_n` spread over
+/// its top face at z = `top_z_mm`.
+BoundaryConditions quarter_block_pushed_down(const ligsim::TetMesh& mesh, double top_z_mm,
+                                             double total_n)
+{
+  BoundaryConditions conditions;
+  ConstraintSet x_symmetry{"x0",
+                           nodes_on_plane(mesh.V, 0, 0.0, 1e-9),
+                           {true, false, false},
+                           Eigen::Vector3d::Zero(),
+                           std::nullopt};
+  ConstraintSet y_symmetry{"y0",
+                           nodes_on_plane(mesh.V, 1, 0.0, 1e-9),
+                           {false, true, false},
+                           Eigen::Vector3d::Zero(),
+                           std::nullopt};
+  conditions.constraints = {x_symmetry, y_symmetry};
+  NodalLoad load{"top", nodes_on_plane(mesh.V, 2, top_z_mm, 1e-9), Eigen::Vector3d::Zero()};
+  load.force_per_node_n = Eigen::Vector3d(0, 0, -total_n / static_cast<double>(load.nodes.size()));
+  conditions.loads = {load};
+  return conditions;
+}
+
 } // namespace
 
 TEST(ContactSolvers, ContactThatNeverTouchesChangesNothingBitForBit)
@@ -79,22 +102,8 @@ TEST(ContactSolvers, BlockPressedOnAPlaneFeelsTheLoadAsReaction)
   ligsim::TetMesh mesh = structured_box_mesh({4, 4, 2}, {2.0, 2.0, 1.0});
   mesh.V.col(2).array() += 0.2; // 0.2 mm above the plane z = 0
   const HyperelasticBody body(mesh, ground_substance(), no_fibers());
-  BoundaryConditions conditions;
-  ConstraintSet x_symmetry{"x0",
-                           nodes_on_plane(mesh.V, 0, 0.0, 1e-9),
-                           {true, false, false},
-                           Eigen::Vector3d::Zero(),
-                           std::nullopt};
-  ConstraintSet y_symmetry{"y0",
-                           nodes_on_plane(mesh.V, 1, 0.0, 1e-9),
-                           {false, true, false},
-                           Eigen::Vector3d::Zero(),
-                           std::nullopt};
-  conditions.constraints = {x_symmetry, y_symmetry};
-  NodalLoad load{"top", nodes_on_plane(mesh.V, 2, 1.2, 1e-9), Eigen::Vector3d::Zero()};
   const double total_n = 20.0; // 5 MPa on 4 mm^2
-  load.force_per_node_n = Eigen::Vector3d(0, 0, -total_n / static_cast<double>(load.nodes.size()));
-  conditions.loads = {load};
+  const BoundaryConditions conditions = quarter_block_pushed_down(mesh, 1.2, total_n);
   const PlaneDistance plane({0.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
   ContactSettings settings;
   settings.d_hat_mm = 0.3;
@@ -132,22 +141,8 @@ TEST(ContactSolvers, ImplicitEulerFramesNeverCrossThePlaneAndComeToRestOnIt)
   ligsim::TetMesh mesh = structured_box_mesh({4, 4, 2}, {2.0, 2.0, 1.0});
   mesh.V.col(2).array() += 1.0; // beyond d_hat: nothing resists the first frame's fall
   const HyperelasticBody body(mesh, ground_substance(), no_fibers());
-  BoundaryConditions conditions;
-  ConstraintSet x_symmetry{"x0",
-                           nodes_on_plane(mesh.V, 0, 0.0, 1e-9),
-                           {true, false, false},
-                           Eigen::Vector3d::Zero(),
-                           std::nullopt};
-  ConstraintSet y_symmetry{"y0",
-                           nodes_on_plane(mesh.V, 1, 0.0, 1e-9),
-                           {false, true, false},
-                           Eigen::Vector3d::Zero(),
-                           std::nullopt};
-  conditions.constraints = {x_symmetry, y_symmetry};
-  NodalLoad load{"top", nodes_on_plane(mesh.V, 2, 2.0, 1e-9), Eigen::Vector3d::Zero()};
   const double total_n = 100.0;
-  load.force_per_node_n = Eigen::Vector3d(0, 0, -total_n / static_cast<double>(load.nodes.size()));
-  conditions.loads = {load};
+  const BoundaryConditions conditions = quarter_block_pushed_down(mesh, 2.0, total_n);
   const PlaneDistance plane({0.0, 0.0, 0.0}, {0.0, 0.0, 1.0});
   ContactSettings settings;
   settings.d_hat_mm = 0.3;
