@@ -253,7 +253,8 @@ TEST(Build, DefectiveMclIsRepairedIntoAValidModel)
 
 TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
 {
-  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces.
+  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces, its labels
+  // given by name (segment names in its header, and its colour table).
   const fs::path out = fresh_folder("mcl_labels");
   const CliResult result =
       run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl_labels.toml").string() +
@@ -264,10 +265,19 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
   const nlohmann::json& labels = summary["results"]["label_map"];
   EXPECT_EQ(labels["spacing_mm"], nlohmann::json::array({0.3, 0.3, 1.0}));
   EXPECT_NE(labels["frame"].get<std::string>().find("LPS"), std::string::npos);
-  for (const char* part : {"ligament", "femur", "tibia"}) {
+  const std::map<std::string, std::pair<int, std::string>> parts = {
+      {"ligament", {1, "labels_ligament.vtp"}},
+      {"femur", {2, "femur.vtp"}},
+      {"tibia", {3, "tibia.vtp"}}};
+  for (const auto& [part, expected] : parts) {
+    EXPECT_EQ(labels[part]["label"].get<int>(), expected.first) << part;
+    EXPECT_EQ(labels[part]["names"].size(), 2u) << part; // header and colour table
     EXPECT_EQ(labels[part]["components"].get<int>(), 1) << part;
-    EXPECT_TRUE(fs::exists(out / ("labels_" + std::string(part) + ".vtp"))) << part;
+    EXPECT_TRUE(fs::exists(out / expected.second)) << part;
   }
+  // The bones are written once, by the label step, under the names the flexion job reads.
+  for (const char* stale : {"labels_femur.vtp", "labels_tibia.vtp"})
+    EXPECT_FALSE(fs::exists(out / stale)) << stale;
   const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
   EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
   // The smooth label surface keeps the segmented MCL's volume.
@@ -278,4 +288,20 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
   EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
               0.05 * std::abs(signed_volume(mcl)));
   expect_centerline_inside_between_attachments(out, from_labels, 2.0);
+
+  // The flexion job finds the model's bones: the axis is fitted to the label map's cartilage,
+  // and contact keeps the ligament out of both bones.
+  const fs::path flexion = fresh_folder("mcl_labels_flexion");
+  const CliResult flexed = run_ligsim(
+      "flexion --config " + source_path("data/vhf-right-knee/flexion.toml").string() + " --model " +
+      out.string() + " --angles 0,15 --no-images --out " + flexion.string());
+  ASSERT_EQ(flexed.exit_code, 0) << flexed.stderr_text;
+  const nlohmann::json swept = read_summary(flexion);
+  EXPECT_GT(swept["parameters"]["axis"]["direction"][0].get<double>(), 0.95); // mediolateral
+  ASSERT_EQ(swept["results"]["angles"].size(), 2u);
+  for (const nlohmann::json& angle : swept["results"]["angles"]) {
+    EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();
+    for (const char* bone : {"femur", "tibia"})
+      EXPECT_LT(angle["contact"][bone]["penetration_mm"].get<double>(), 0.05) << angle.dump();
+  }
 }
