@@ -288,6 +288,12 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
   EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
               0.05 * std::abs(signed_volume(mcl)));
   expect_centerline_inside_between_attachments(out, from_labels, 2.0);
+  // The bones' surfaces from their labels are closed (the image border closes them).
+  for (const char* bone : {"femur.vtp", "tibia.vtp"}) {
+    const TriangleSurface surface = io::read_surface(out / bone);
+    EXPECT_TRUE(check_topology(surface).closed_manifold()) << bone;
+    EXPECT_GT(signed_volume(surface), 0.0) << bone; // facing outward
+  }
 
   // The flexion job finds the model's bones: the axis is fitted to the label map's cartilage,
   // and contact keeps the ligament out of both bones.
