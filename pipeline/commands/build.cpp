@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
@@ -196,7 +197,10 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   BuildConfig config;
   repair::Report repairs;
   try {
+    const StageMeter label_meter;
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
+    if (!label_report.is_null())
+      label_report["wall_s"] = label_meter.wall_s(); // reading the map, surfaces, writing them
     pipeline::load_ligament(config, nullptr, &repairs);
     pipeline::load_bone(config.femur);
     pipeline::load_bone(config.tibia);

@@ -265,6 +265,7 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
   const nlohmann::json& labels = summary["results"]["label_map"];
   EXPECT_EQ(labels["spacing_mm"], nlohmann::json::array({0.3, 0.3, 1.0}));
   EXPECT_NE(labels["frame"].get<std::string>().find("LPS"), std::string::npos);
+  EXPECT_GT(labels["wall_s"].get<double>(), 0.0);
   const std::map<std::string, std::pair<int, std::string>> parts = {
       {"ligament", {1, "labels_ligament.vtp"}},
       {"femur", {2, "femur.vtp"}},
