@@ -7,6 +7,7 @@
 #include "common/vtk_files.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "tests/pipeline/cli_runner.hpp"
+#include "tests/stages/labelmap/oblique_cylinder.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,7 +15,6 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -26,48 +26,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kRadius = 3.0, kHalfLength = 8.0;
 constexpr int kCylinderLabel = 6;
 
-/// The analytic cylinder in physical (LPS) coordinates, mm.
-struct Cylinder {
-  Eigen::Vector3d centre, axis;
-
-  /// Signed distance to the finite cylinder (negative inside), mm.
-  double signed_distance(const Eigen::Vector3d& p) const
-  {
-    const Eigen::Vector3d d = p - centre;
-    const double along = d.dot(axis);
-    const double radial = (d - along * axis).norm() - kRadius;
-    const double axial = std::abs(along) - kHalfLength;
-    const double outside = std::hypot(std::max(radial, 0.0), std::max(axial, 0.0));
-    return outside + std::min(std::max(radial, axial), 0.0);
-  }
-};
-
-/// Writes `file` (NRRD, raw unsigned char) and returns the cylinder it holds: a voxel has the
-/// label if its centre is inside.
-Cylinder write_oblique_cylinder_nrrd(const fs::path& file)
+/// Writes `file` (NRRD, raw unsigned char, Slicer's segment keys naming the label) holding the
+/// shape.
+void write_slicer_nrrd(const ObliqueCylinder& shape, const fs::path& file)
 {
-  const Eigen::Vector3i dims(72, 44, 20);
-  const Eigen::Vector3d spacing(0.3, 0.3, 1.0), origin(-40.0, 25.0, 110.0);
-  const Eigen::Matrix3d direction =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(-2, 1, 3).normalized()).toRotationMatrix();
-  const auto physical = [&](const Eigen::Vector3d& ijk) {
-    return Eigen::Vector3d(origin + direction * spacing.asDiagonal() * ijk);
-  };
-  const Eigen::Vector3d centre_ijk = 0.5 * (dims.cast<double>() - Eigen::Vector3d::Ones());
-  const Cylinder cylinder{physical(centre_ijk),
-                          direction * Eigen::Vector3d(1.0, 0.35, 0.62).normalized()};
-
   std::ofstream out(file, std::ios::binary);
+  out.precision(17);
+  const Eigen::Vector3i& dims = shape.dims;
   out << "NRRD0004\ntype: unsigned char\ndimension: 3\nspace: left-posterior-superior\n"
       << "sizes: " << dims.x() << ' ' << dims.y() << ' ' << dims.z() << "\nspace directions:";
-  out.precision(17);
   for (int c = 0; c < 3; ++c) {
-    const Eigen::Vector3d column = direction.col(c) * spacing[c];
+    const Eigen::Vector3d column = shape.direction.col(c) * shape.spacing_mm[c];
     out << " (" << column.x() << ',' << column.y() << ',' << column.z() << ')';
   }
+  const Eigen::Vector3d& origin = shape.origin_mm;
   out << "\nkinds: domain domain domain\nencoding: raw\n"
       << "space origin: (" << origin.x() << ',' << origin.y() << ',' << origin.z() << ")\n"
       << "Segment0_ID:=Segment_1\nSegment0_LabelValue:=" << kCylinderLabel
@@ -75,10 +49,7 @@ Cylinder write_oblique_cylinder_nrrd(const fs::path& file)
   for (int k = 0; k < dims.z(); ++k)
     for (int j = 0; j < dims.y(); ++j)
       for (int i = 0; i < dims.x(); ++i)
-        out.put(cylinder.signed_distance(physical(Eigen::Vector3d(i, j, k))) <= 0.0
-                    ? static_cast<char>(kCylinderLabel)
-                    : 0);
-  return cylinder;
+        out.put(shape.voxel_inside(i, j, k) ? static_cast<char>(kCylinderLabel) : 0);
 }
 
 } // namespace
@@ -87,7 +58,8 @@ TEST(BuildLabels, RotatedAnisotropicCylinderComesOutInThePhysicalFrame)
 {
   const fs::path dir = fresh_folder("labels_cylinder_map"), out = fresh_folder("labels_cylinder");
   fs::create_directories(dir);
-  const Cylinder cylinder = write_oblique_cylinder_nrrd(dir / "cylinder.seg.nrrd");
+  const ObliqueCylinder cylinder;
+  write_slicer_nrrd(cylinder, dir / "cylinder.seg.nrrd");
   // The label by its segment name, in another case; with no bones, the femur takes the +z end
   // and the tibia the -z end.
   const CliResult result =
@@ -125,10 +97,9 @@ TEST(BuildLabels, RotatedAnisotropicCylinderComesOutInThePhysicalFrame)
   const double volume = mesh["total_volume_mm3"];
   EXPECT_NEAR(tets_volume, volume, 1e-6 * volume);
   const double facet_distance_mm = mesh["used"]["facet_distance_mm"];
-  const double analytic_volume = M_PI * kRadius * kRadius * 2.0 * kHalfLength;
-  const double analytic_area = 2.0 * M_PI * kRadius * (2.0 * kHalfLength + kRadius);
+  const double analytic_volume = cylinder.volume_mm3();
   EXPECT_LT(volume, 1.02 * analytic_volume);
-  EXPECT_GT(volume, 0.98 * analytic_volume - analytic_area * facet_distance_mm);
+  EXPECT_GT(volume, 0.98 * analytic_volume - cylinder.area_mm2() * facet_distance_mm);
 
   // The centerline runs along the cylinder's axis, near it, over most of its length. Measured:
   // 0.71 degrees, 0.15 mm, 16.2 mm.
@@ -149,6 +120,6 @@ TEST(BuildLabels, RotatedAnisotropicCylinderComesOutInThePhysicalFrame)
   EXPECT_GT(std::abs(line_axis.dot(cylinder.axis)), std::cos(2.0 * M_PI / 180.0));
   EXPECT_LT(off_axis_mm, 0.5);
   const double span_mm = (line.row(0) - line.row(line.rows() - 1)).norm();
-  EXPECT_GT(span_mm, 0.8 * 2.0 * kHalfLength);
+  EXPECT_GT(span_mm, 0.8 * 2.0 * cylinder.half_length_mm);
   fs::remove_all(dir);
 }

@@ -9,6 +9,7 @@
 #include "stages/labelmap/label_surface.hpp"
 #include "stages/tetmesh/tet_geometry.hpp"
 #include "stages/tetmesh/tetmesh.hpp"
+#include "tests/stages/labelmap/oblique_cylinder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,45 +28,21 @@ using namespace ligsim::labelmap;
 namespace {
 
 constexpr int kCylinder = 4;
-constexpr double kRadius = 3.0, kHalfLength = 8.0;
-const double kPi = std::acos(-1.0);
+const test::ObliqueCylinder kShape;
 
-/// The analytic cylinder in physical coordinates (mm).
-struct Cylinder {
-  Eigen::Vector3d centre, axis;
-
-  /// Signed distance to the finite cylinder (negative inside), mm.
-  double signed_distance(const Eigen::Vector3d& p) const
-  {
-    const Eigen::Vector3d d = p - centre;
-    const double along = d.dot(axis);
-    const double radial = (d - along * axis).norm() - kRadius;
-    const double axial = std::abs(along) - kHalfLength;
-    const double outside = std::hypot(std::max(radial, 0.0), std::max(axial, 0.0));
-    return outside + std::min(std::max(radial, axial), 0.0);
-  }
-};
-
-/// The image: index axes rotated and shifted in physical space; the cylinder's axis runs at
-/// about 30 degrees to the slice planes (index axis k has the 1 mm spacing). A voxel has the
-/// label if its centre lies inside the cylinder, as a segmentation of a scan would.
-LabelImage oblique_cylinder_image(Cylinder& cylinder)
+/// The image of the cylinder: label kCylinder inside, 0 outside.
+LabelImage oblique_cylinder_image()
 {
   LabelImage image;
-  image.dims = {72, 44, 20};
-  image.spacing_mm = {0.3, 0.3, 1.0};
-  image.origin_mm = {-40.0, 25.0, 110.0};
-  image.direction =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(-2, 1, 3).normalized()).toRotationMatrix();
-  const Eigen::Vector3d centre_ijk = 0.5 * (image.dims.cast<double>() - Eigen::Vector3d::Ones());
-  const Eigen::Vector3d axis_in_index_frame = Eigen::Vector3d(1.0, 0.35, 0.62).normalized();
-  cylinder.centre = image.physical_point(centre_ijk);
-  cylinder.axis = image.direction * axis_in_index_frame;
+  image.dims = kShape.dims;
+  image.spacing_mm = kShape.spacing_mm;
+  image.origin_mm = kShape.origin_mm;
+  image.direction = kShape.direction;
   image.labels.assign(static_cast<std::size_t>(image.dims.prod()), 0);
   for (int k = 0; k < image.dims.z(); ++k)
     for (int j = 0; j < image.dims.y(); ++j)
       for (int i = 0; i < image.dims.x(); ++i)
-        if (cylinder.signed_distance(image.physical_point(Eigen::Vector3d(i, j, k))) <= 0.0)
+        if (kShape.voxel_inside(i, j, k))
           image(i, j, k) = kCylinder;
   return image;
 }
@@ -95,19 +72,18 @@ std::vector<int> boundary_vertices(const TetMesh& mesh)
 /// Distances of `points` to the analytic cylinder's surface (mm): RMS and max, over the points
 /// further than `rim_mm` from its two circular rims (which the smoothing rounds, by design).
 std::pair<double, double> distance_to_cylinder(const Points& points,
-                                               const std::vector<int>& vertices,
-                                               const Cylinder& cylinder, double rim_mm)
+                                               const std::vector<int>& vertices, double rim_mm)
 {
   double sum = 0.0, worst = 0.0;
   int count = 0;
   for (int v : vertices) {
     const Eigen::Vector3d p = points.row(v).transpose();
-    const Eigen::Vector3d d = p - cylinder.centre;
-    const double along = d.dot(cylinder.axis);
-    const double radial = (d - along * cylinder.axis).norm();
-    if (std::hypot(radial - kRadius, std::abs(along) - kHalfLength) < rim_mm)
+    const Eigen::Vector3d d = p - kShape.centre;
+    const double along = d.dot(kShape.axis);
+    const double radial = (d - along * kShape.axis).norm();
+    if (std::hypot(radial - kShape.radius_mm, std::abs(along) - kShape.half_length_mm) < rim_mm)
       continue;
-    const double distance = std::abs(cylinder.signed_distance(p));
+    const double distance = std::abs(kShape.signed_distance(p));
     sum += distance * distance;
     worst = std::max(worst, distance);
     ++count;
@@ -119,8 +95,7 @@ std::pair<double, double> distance_to_cylinder(const Points& points,
 
 TEST(LabelTetMesh, ObliqueCylinderMeshesInThePhysicalFrameWithoutTheSliceStaircase)
 {
-  Cylinder cylinder;
-  const LabelImage image = oblique_cylinder_image(cylinder);
+  const LabelImage image = oblique_cylinder_image();
   Selection selection;
   const TriangleSurface surface = label_surface(image, kCylinder, &selection);
   // Facets within a tenth of the in-plane voxel of the surface, so that the mesher's chords
@@ -155,28 +130,27 @@ TEST(LabelTetMesh, ObliqueCylinderMeshesInThePhysicalFrameWithoutTheSliceStairca
   const Eigen::Vector3d long_axis = principal.eigenvectors().col(2);
 
   // Measured: voxels 453.1, surface 445.9 (the smoothing rounds the rims), tets 442.6 mm^3.
-  const double analytic_volume = kPi * kRadius * kRadius * 2.0 * kHalfLength; // 452.4 mm^3
+  const double analytic_volume = kShape.volume_mm3(); // 452.4 mm^3
   const double voxel_volume = static_cast<double>(selection.voxels) * image.spacing_mm.prod();
   EXPECT_NEAR(voxel_volume, analytic_volume, 0.01 * analytic_volume); // the image is right
   EXPECT_NEAR(signed_volume(surface), analytic_volume, 0.02 * analytic_volume);
   EXPECT_NEAR(volume, analytic_volume, 0.03 * analytic_volume);
   // Measured: 0.001 mm and 0.18 degrees.
-  EXPECT_LT((centroid - cylinder.centre).norm(), 0.05); // mm: the physical frame, not the index
+  EXPECT_LT((centroid - kShape.centre).norm(), 0.05); // mm: the physical frame, not the index
   const double axis_error_deg =
-      std::acos(std::min(1.0, std::abs(long_axis.dot(cylinder.axis)))) * 180.0 / kPi;
+      std::acos(std::min(1.0, std::abs(long_axis.dot(kShape.axis)))) * 180.0 / M_PI;
   EXPECT_LT(axis_error_deg, 0.5);
 
   // The boundary lies on the analytic cylinder within a fraction of the slice thickness (1 mm);
   // the surface extracted without smoothing (the staircase of the slices) does not. Measured:
   // off the rims rms 0.074, max 0.17 mm (unsmoothed: 0.164, 0.43 mm); with the rims max 0.39.
   const std::vector<int> boundary = boundary_vertices(mesh);
-  const auto [rms_mm, max_mm] = distance_to_cylinder(mesh.V, boundary, cylinder, 1.0);
-  const auto [rms_with_rims_mm, max_with_rims_mm] =
-      distance_to_cylinder(mesh.V, boundary, cylinder, 0.0);
+  const auto [rms_mm, max_mm] = distance_to_cylinder(mesh.V, boundary, 1.0);
+  const auto [rms_with_rims_mm, max_with_rims_mm] = distance_to_cylinder(mesh.V, boundary, 0.0);
   const TriangleSurface stairs = label_surface(image, kCylinder, nullptr, 0);
   std::vector<int> stairs_vertices(static_cast<std::size_t>(stairs.V.rows()));
   std::iota(stairs_vertices.begin(), stairs_vertices.end(), 0);
-  const double rms_stairs_mm = distance_to_cylinder(stairs.V, stairs_vertices, cylinder, 1.0).first;
+  const double rms_stairs_mm = distance_to_cylinder(stairs.V, stairs_vertices, 1.0).first;
   EXPECT_LT(rms_mm, 0.1);
   EXPECT_LT(max_mm, 0.25);
   EXPECT_LT(max_with_rims_mm, 0.5);
