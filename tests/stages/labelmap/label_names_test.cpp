@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 using namespace ligsim;
@@ -69,6 +70,23 @@ void write_slicer_segmentation(const fs::path& file, int layers = 1)
       out.put(static_cast<char>(v < 8 ? 2 : v < 16 ? 5 : 0));
 }
 
+/// The message of the InputError `action` throws (a test failure if it throws none).
+std::string input_error(const std::function<void()>& action)
+{
+  try {
+    action();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return {};
+}
+
+bool contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
 } // namespace
 
 TEST(LabelNames, SlicerSegmentNamesAreReadFromTheHeader)
@@ -96,15 +114,10 @@ TEST(LabelNames, ALayeredSegmentationIsAClearError)
 {
   const fs::path dir = fresh_dir("layers");
   write_slicer_segmentation(dir / "overlap.seg.nrrd", 2);
-  try {
-    read_label_image(dir / "overlap.seg.nrrd");
-    FAIL() << "a 4-D layered file was read";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("overlap.seg.nrrd"), std::string::npos) << message;
-    EXPECT_NE(message.find("2 layers"), std::string::npos) << message;
-    EXPECT_NE(message.find("single-layer"), std::string::npos) << message;
-  }
+  const std::string layered = input_error([&] { read_label_image(dir / "overlap.seg.nrrd"); });
+  EXPECT_TRUE(contains(layered, "overlap.seg.nrrd")) << layered;
+  EXPECT_TRUE(contains(layered, "2 layers")) << layered;
+  EXPECT_TRUE(contains(layered, "single-layer")) << layered;
   // A name of a segment in another layer cannot be used with a single layer.
   const std::vector<LabelName> names = {{3, "Femur", 1, "segment 4 of x.seg.nrrd"}};
   EXPECT_THROW(resolve_label("Femur", names, "label"), InputError);
@@ -149,12 +162,8 @@ TEST(LabelNames, ColourTablesBesideTheImage)
     std::ofstream bad(dir / "bad.ctbl");
     bad << "# header\n1 MCL 1 2 3 255\nseven Femur 1 2 3 255\n";
   }
-  try {
-    read_colour_table(dir / "bad.ctbl");
-    FAIL() << "a line without a value was read";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.ctbl', line 3"), std::string::npos) << e.what();
-  }
+  const std::string bad = input_error([&] { read_colour_table(dir / "bad.ctbl"); });
+  EXPECT_TRUE(contains(bad, "bad.ctbl', line 3")) << bad;
   EXPECT_THROW(read_colour_table(dir / "missing.ctbl"), InputError);
   fs::remove_all(dir);
 }
@@ -171,28 +180,14 @@ TEST(LabelNames, ExactNamesFirstThenCaseThenClearErrors)
   EXPECT_EQ(resolve_label("MCL", names, "label"), 5);
   EXPECT_EQ(resolve_label("FEMUR", names, "label"), 2); // two sources, one label
   EXPECT_EQ(resolve_label("tibia", names, "label"), 3);
-  try {
-    resolve_label("Mcl", names, "ligament label");
-    FAIL() << "an ambiguous name resolved";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("ligament label 'Mcl' is ambiguous"), std::string::npos) << message;
-    EXPECT_NE(message.find("1 (segment 0 of a.seg.nrrd)"), std::string::npos) << message;
-    EXPECT_NE(message.find("5 (a.ctbl:3)"), std::string::npos) << message;
-  }
-  try {
-    resolve_label("ACL", names, "label");
-    FAIL() << "an unknown name resolved";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("'ACL' is not a label"), std::string::npos) << message;
-    EXPECT_NE(message.find("'Tibia' (3)"), std::string::npos) << message;
-    EXPECT_NE(message.find("'MCL' (5)"), std::string::npos) << message;
-  }
-  try {
-    resolve_label("ACL", {}, "label");
-    FAIL() << "a name resolved without names";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("names no labels"), std::string::npos) << e.what();
-  }
+  const std::string ambiguous = input_error([&] { resolve_label("Mcl", names, "ligament label"); });
+  EXPECT_TRUE(contains(ambiguous, "ligament label 'Mcl' is ambiguous")) << ambiguous;
+  EXPECT_TRUE(contains(ambiguous, "1 (segment 0 of a.seg.nrrd)")) << ambiguous;
+  EXPECT_TRUE(contains(ambiguous, "5 (a.ctbl:3)")) << ambiguous;
+  const std::string unknown = input_error([&] { resolve_label("ACL", names, "label"); });
+  EXPECT_TRUE(contains(unknown, "'ACL' is not a label")) << unknown;
+  EXPECT_TRUE(contains(unknown, "'Tibia' (3)")) << unknown;
+  EXPECT_TRUE(contains(unknown, "'MCL' (5)")) << unknown;
+  const std::string unnamed = input_error([&] { resolve_label("ACL", {}, "label"); });
+  EXPECT_TRUE(contains(unnamed, "names no labels")) << unnamed;
 }
