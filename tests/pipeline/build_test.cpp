@@ -281,13 +281,23 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
     EXPECT_FALSE(fs::exists(out / stale)) << stale;
   const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
   EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
-  // The smooth label surface keeps the segmented MCL's volume.
+  // The smooth label surface keeps the segmented MCL's volume and lies on it, within a
+  // fraction of the 1 mm slices. Measured: 777.6 of 776.2 mm^3; rms 0.097, max 0.35 mm.
   const TriangleSurface mcl =
       io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl"));
   const TriangleSurface from_labels = io::read_surface(out / "labels_ligament.vtp");
   EXPECT_TRUE(check_topology(from_labels).closed_manifold());
   EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
-              0.05 * std::abs(signed_volume(mcl)));
+              0.01 * std::abs(signed_volume(mcl)));
+  const SurfaceQuery segmented(mcl);
+  double squares = 0.0, farthest_mm = 0.0;
+  for (Eigen::Index v = 0; v < from_labels.V.rows(); ++v) {
+    const double d = segmented.distance(from_labels.V.row(v).transpose());
+    squares += d * d;
+    farthest_mm = std::max(farthest_mm, d);
+  }
+  EXPECT_LT(std::sqrt(squares / static_cast<double>(from_labels.V.rows())), 0.15);
+  EXPECT_LT(farthest_mm, 0.5);
   expect_centerline_inside_between_attachments(out, from_labels, 2.0);
   // The bones' surfaces from their labels are closed (the image border closes them).
   for (const char* bone : {"femur.vtp", "tibia.vtp"}) {
