@@ -152,9 +152,16 @@ std::vector<LabelName> read_colour_table(const fs::path& file)
     if (!(fields >> value_text))
       continue; // blank or comment
     const std::optional<std::int32_t> value = integer(value_text);
-    if (!value || !(fields >> name))
-      fail("colour table '{}', line {}: expected 'value name r g b a', found '{}'", file.string(),
-           number, line);
+    // ITK-SNAP's label descriptions end in the name, quoted: value r g b a visible mesh "name".
+    const auto open_quote = content.find('"'), close_quote = content.rfind('"');
+    if (open_quote != std::string::npos && close_quote > open_quote)
+      name = content.substr(open_quote + 1, close_quote - open_quote - 1);
+    else
+      fields >> name;
+    if (!value || name.empty())
+      fail("colour table '{}', line {}: expected 'value name r g b a' (or ITK-SNAP's 'value r g b "
+           "a visible mesh \"name\"'), found '{}'",
+           file.string(), number, line);
     names.push_back({*value, name, 0, fmt::format("{}:{}", file.filename().string(), number)});
   }
   return names;

@@ -1,7 +1,7 @@
 #pragma once
 /// @brief Names of labels: Slicer's segment names (`.seg.nrrd` header) and colour tables
-/// (`.ctbl`, FreeSurfer-style `.txt`: lines `value name r g b a`), and a label given as a number
-/// or a name resolved against them.
+/// (`.ctbl`, FreeSurfer-style `.txt`: lines `value name r g b a`; ITK-SNAP's label descriptions),
+/// and a label given as a number or a name resolved against them.
 
 #include <cstdint>
 #include <filesystem>
@@ -27,7 +27,8 @@ std::vector<LabelName> segment_names(const std::vector<std::pair<std::string, st
 /// The header keys that carry `names` as Slicer segments (binary labelmap, one layer).
 std::vector<std::pair<std::string, std::string>> segment_keys(const std::vector<LabelName>& names);
 
-/// A colour table: `#` comments, blank lines, lines `value name [r g b a ...]`. Throws
+/// A colour table: `#` comments, blank lines, lines `value name [r g b a ...]` (Slicer,
+/// FreeSurfer) or `value r g b a visible mesh "name"` (ITK-SNAP: a quoted name wins). Throws
 /// InputError naming the file and line of a line without an integer value and a name.
 std::vector<LabelName> read_colour_table(const std::filesystem::path& file);
 

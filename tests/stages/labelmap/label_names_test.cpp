@@ -162,6 +162,18 @@ TEST(LabelNames, ColourTablesBesideTheImage)
     std::ofstream bad(dir / "bad.ctbl");
     bad << "# header\n1 MCL 1 2 3 255\nseven Femur 1 2 3 255\n";
   }
+  {
+    std::ofstream itk_snap(dir / "snap.txt");
+    itk_snap << "# ITK-SNAP Label Description File\n"
+                "#  IDX   -R-  -G-  -B-  -A--  VIS MSH  LABEL\n"
+                "    0     0    0    0     0  0  0    \"Clear Label\"\n"
+                "    3   255    0    0     1  1  1    \"Medial collateral ligament\"\n";
+  }
+  const std::vector<LabelName> snap = read_colour_table(dir / "snap.txt");
+  ASSERT_EQ(snap.size(), 2u);
+  EXPECT_EQ(resolve_label("Medial collateral ligament", snap, "label"), 3);
+  EXPECT_EQ(snap[1].source, "snap.txt:4");
+
   const std::string bad = input_error([&] { read_colour_table(dir / "bad.ctbl"); });
   EXPECT_TRUE(contains(bad, "bad.ctbl', line 3")) << bad;
   EXPECT_THROW(read_colour_table(dir / "missing.ctbl"), InputError);
