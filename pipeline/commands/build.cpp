@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
@@ -25,7 +26,7 @@ constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
 /// Command-line flags of `build` and of every stage subcommand; each overrides the config file.
 struct BuildOptions {
   std::string config, surface, femur, tibia, out;
-  std::string labels, ligament_label, femur_label, tibia_label;
+  std::string labels, colour_table, ligament_label, femur_label, tibia_label;
   std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
   std::vector<int> femur_indices, tibia_indices;
   double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
@@ -51,11 +52,18 @@ void add_options(CLI::App* command, BuildOptions& o)
       ->add_option("--labels", o.labels,
                    "label map: .nrrd, .seg.nrrd, .nii, .nii.gz, .mha or .mhd (physical LPS frame)")
       ->group(label_map);
-  command->add_option("--ligament-label", o.ligament_label, "the ligament's label (a number)")
+  command
+      ->add_option("--ligament-label", o.ligament_label,
+                   "the ligament's label: a number or a name (segment name or colour table)")
       ->group(label_map);
   command->add_option("--femur-label", o.femur_label, "the femur's label (optional)")
       ->group(label_map);
   command->add_option("--tibia-label", o.tibia_label, "the tibia's label (optional)")
+      ->group(label_map);
+  command
+      ->add_option("--colour-table", o.colour_table,
+                   "label names: value name r g b a lines (default: a .ctbl or .txt beside the "
+                   "label map, same stem)")
       ->group(label_map);
   auto* attach = "Attachment areas";
   command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")
@@ -145,6 +153,8 @@ BuildConfig resolve_config(const BuildOptions& o)
   config.strict = config.strict || o.strict;
   if (!o.labels.empty())
     config.labels = o.labels;
+  if (!o.colour_table.empty())
+    config.colour_table = o.colour_table;
   set_if(o.ligament_label, config.ligament_label);
   set_if(o.femur_label, config.femur_label);
   set_if(o.tibia_label, config.tibia_label);
@@ -174,8 +184,9 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   const auto clean_up = [&] {
     std::error_code ignored;
     if (!existed) {
-      for (const char* part : {"ligament", "femur", "tibia"})
-        fs::remove(out / fmt::format("labels_{}.vtp", part), ignored);
+      for (const char* file :
+           {pipeline::ligament_from_labels, pipeline::files::femur, pipeline::files::tibia})
+        fs::remove(out / file, ignored);
       fs::remove(out / ".ligsim-cache", ignored); // only removes it if empty
       fs::remove(out, ignored);
     }
@@ -186,7 +197,10 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   BuildConfig config;
   repair::Report repairs;
   try {
+    const StageMeter label_meter;
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
+    if (!label_report.is_null())
+      label_report["wall_s"] = label_meter.wall_s(); // reading the map, surfaces, writing them
     pipeline::load_ligament(config, nullptr, &repairs);
     pipeline::load_bone(config.femur);
     pipeline::load_bone(config.tibia);

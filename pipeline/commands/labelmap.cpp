@@ -5,11 +5,15 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "stages/io/surface_reader.hpp"
+#include "stages/labelmap/label_names.hpp"
 #include "stages/labelmap/rasterize.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <memory>
+#include <tuple>
 
 namespace ligsim::cli {
 
@@ -25,22 +29,53 @@ struct LabelmapOptions {
   std::string out;
 };
 
-labelmap::LabeledSurface read_part(const std::string& text)
+/// A part's surface, label and name (empty if none).
+struct Part {
+  labelmap::LabeledSurface labeled;
+  std::string name;
+};
+
+Part read_part(const std::string& text)
 {
-  const auto colon = text.rfind(':');
-  if (colon == std::string::npos || colon + 1 == text.size())
-    fail("--part '{}': give FILE:LABEL (for example mcl.stl:1)", text);
-  labelmap::LabeledSurface part;
-  try {
-    part.label = std::stoi(text.substr(colon + 1));
-  } catch (const std::exception&) {
-    fail("--part '{}': the label after ':' must be a number", text);
+  const auto is_number = [](const std::string& field) {
+    return !field.empty() && std::all_of(field.begin(), field.end(),
+                                         [](unsigned char c) { return std::isdigit(c) != 0; });
+  };
+  // FILE:LABEL or FILE:LABEL:NAME, split from the right (a file name may hold ':').
+  const auto split = [](const std::string& s) -> std::pair<std::string, std::string> {
+    const auto colon = s.rfind(':');
+    if (colon == std::string::npos)
+      return {"", s};
+    return {s.substr(0, colon), s.substr(colon + 1)};
+  };
+  Part part;
+  auto [file, label_text] = split(text);
+  if (!is_number(label_text) && !file.empty()) {
+    part.name = label_text;
+    std::tie(file, label_text) = split(file);
+    if (part.name.empty())
+      fail("--part '{}': the name after the label is empty", text);
   }
-  if (part.label <= 0)
+  if (file.empty() || !is_number(label_text))
+    fail("--part '{}': give FILE:LABEL or FILE:LABEL:NAME (for example mcl.stl:1:MCL), the "
+         "label a positive number",
+         text);
+  try {
+    part.labeled.label = std::stoi(label_text);
+  } catch (const std::exception&) {
+    fail("--part '{}': the label {} is too large", text, label_text);
+  }
+  if (part.labeled.label <= 0)
     fail("--part '{}': labels are positive (0 is the background)", text);
-  part.surface = io::read_surface(text.substr(0, colon));
-  io::orient_outward(part.surface);
+  part.labeled.surface = io::read_surface(file);
+  io::orient_outward(part.labeled.surface);
   return part;
+}
+
+/// Where the colour table of a label map goes: beside it, same stem, .ctbl.
+fs::path colour_table_of(const fs::path& image)
+{
+  return labelmap::colour_tables_beside(image).front();
 }
 
 void run_labelmap(const LabelmapOptions& o)
@@ -50,8 +85,13 @@ void run_labelmap(const LabelmapOptions& o)
   if (o.spacing.size() != 3)
     fail("--spacing needs three values (x, y, z in mm)");
   std::vector<labelmap::LabeledSurface> parts;
-  for (const std::string& text : o.parts)
-    parts.push_back(read_part(text));
+  std::vector<labelmap::LabelName> names;
+  for (const std::string& text : o.parts) {
+    Part part = read_part(text);
+    if (!part.name.empty())
+      names.push_back({part.labeled.label, part.name, 0, "--part"});
+    parts.push_back(std::move(part.labeled));
+  }
   // The image covers the first part (or --around) with a margin: the region a scan would show.
   const TriangleSurface region =
       o.around.empty() ? parts.front().surface : io::read_surface(o.around);
@@ -60,13 +100,23 @@ void run_labelmap(const LabelmapOptions& o)
   const Eigen::Vector3d hi =
       region.V.colwise().maxCoeff().transpose() + Eigen::Vector3d::Constant(o.margin_mm);
   const StageMeter meter;
-  const labelmap::LabelImage image =
+  labelmap::LabelImage image =
       labelmap::rasterize(parts, lo, hi, Eigen::Vector3d(o.spacing[0], o.spacing[1], o.spacing[2]));
+  std::sort(names.begin(), names.end(),
+            [](const auto& a, const auto& b) { return a.value < b.value; });
+  image.segment_names = names;
   const fs::path out = o.out;
   labelmap::write_label_image(image, out);
+  // The names for every format (NRRD also carries them in its header, as Slicer's segments).
+  const fs::path table = colour_table_of(out);
+  if (!names.empty()) {
+    labelmap::write_colour_table(names, table);
+    log_info(fmt::format("wrote {}", table.string()));
+  }
 
   RunSummary summary("labelmap");
   summary.inputs() = {{"parts", o.parts}, {"around", o.around}};
+  summary.results()["colour_table"] = names.empty() ? "" : table.string();
   summary.parameters() = {{"spacing_mm", o.spacing}, {"margin_mm", o.margin_mm}};
   nlohmann::json counts = nlohmann::json::object();
   for (const auto& part : parts)
@@ -88,7 +138,9 @@ void add_labelmap_command(CLI::App& app)
   auto* command = app.add_subcommand(
       "labelmap", "voxelize surfaces into a segmentation label map (.nrrd, .nii.gz, .mha)");
   auto options = std::make_shared<LabelmapOptions>();
-  command->add_option("--part", options->parts, "FILE:LABEL, a closed surface and its label")
+  command
+      ->add_option("--part", options->parts,
+                   "FILE:LABEL or FILE:LABEL:NAME, a closed surface, its label and its name")
       ->required();
   command->add_option("--spacing", options->spacing, "voxel size x,y,z in mm (default 0.3,0.3,1)")
       ->delimiter(',')

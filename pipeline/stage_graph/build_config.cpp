@@ -77,6 +77,21 @@ public:
     type_error(key, node, expected_name<T>());
   }
 
+  /// A label: a number or a name, kept as text (as on the command line).
+  void read_label(const std::string& key, std::string& target)
+  {
+    m_known.insert(key);
+    const toml::node* node = m_table ? m_table->get(key) : nullptr;
+    if (node == nullptr)
+      return;
+    if (auto number = node->value<int64_t>())
+      target = std::to_string(*number);
+    else if (auto name = node->value<std::string>())
+      target = *name;
+    else
+      type_error(key, node, "a label number or name");
+  }
+
   void read_path(const std::string& key, fs::path& target)
   {
     std::string text;
@@ -185,15 +200,11 @@ BuildConfig load_build_config(const fs::path& file)
   input.read_path("tibia", config.tibia);
   input.read("strict", config.strict);
   input.read_path("labels", config.labels);
+  input.read_path("colour_table", config.colour_table);
   for (auto [key, target] : {std::pair{"ligament_label", &config.ligament_label},
                              std::pair{"femur_label", &config.femur_label},
-                             std::pair{"tibia_label", &config.tibia_label}}) {
-    // Kept as text, as on the command line; only numbers are read today.
-    int number = -1;
-    input.read(key, number);
-    if (number >= 0)
-      *target = std::to_string(number);
-  }
+                             std::pair{"tibia_label", &config.tibia_label}})
+    input.read_label(key, *target);
   input.reject_unknown();
 
   const toml::table* attachments = table_at(&root, "attachments");
@@ -291,10 +302,12 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
 
 nlohmann::json to_json(const BuildConfig& c)
 {
-  nlohmann::json all = {{"surface", path_text(c.surface)}, {"femur", path_text(c.femur)},
-                        {"tibia", path_text(c.tibia)},     {"strict", c.strict},
-                        {"labels", path_text(c.labels)},   {"ligament_label", c.ligament_label},
-                        {"femur_label", c.femur_label},    {"tibia_label", c.tibia_label}};
+  nlohmann::json all = {
+      {"surface", path_text(c.surface)},    {"femur", path_text(c.femur)},
+      {"tibia", path_text(c.tibia)},        {"strict", c.strict},
+      {"labels", path_text(c.labels)},      {"colour_table", path_text(c.colour_table)},
+      {"ligament_label", c.ligament_label}, {"femur_label", c.femur_label},
+      {"tibia_label", c.tibia_label}};
   for (const char* stage :
        {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);

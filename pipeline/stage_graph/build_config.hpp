@@ -49,8 +49,11 @@ struct BuildConfig {
   /// Refuse a defective ligament surface instead of repairing it.
   bool strict = false;
   /// A segmentation label map to take the surfaces from (instead of surface/femur/tibia), and
-  /// the labels (numbers, as text) of the ligament and, optionally, the bones.
+  /// the labels (numbers or names, as text) of the ligament and, optionally, the bones. Names
+  /// resolve through the map's segment names and a colour table (`colour_table`, or one beside
+  /// the map).
   std::filesystem::path labels;
+  std::filesystem::path colour_table;
   std::string ligament_label, femur_label, tibia_label;
   attachments::Rule femur_attachment;
   attachments::Rule tibia_attachment;

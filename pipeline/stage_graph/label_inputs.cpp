@@ -3,13 +3,11 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "pipeline/stage_graph/stage_files.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/labelmap/label_surface.hpp"
 
 #include <vtkPolyData.h>
-
-#include <cctype>
-#include <optional>
 
 namespace ligsim::pipeline {
 
@@ -17,9 +15,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json selection_json(const labelmap::Selection& s, const TriangleSurface& surface)
+nlohmann::json selection_json(const labelmap::Selection& s, const TriangleSurface& surface,
+                              const std::vector<labelmap::LabelName>& names)
 {
+  nlohmann::json known = nlohmann::json::array();
+  for (const labelmap::LabelName& n : names)
+    if (n.value == s.label)
+      known.push_back({{"name", n.name}, {"source", n.source}});
   return {{"label", s.label},
+          {"names", known},
           {"voxels", s.voxels},
           {"components", s.components},
           {"dropped_voxels", s.dropped_voxels},
@@ -27,17 +31,30 @@ nlohmann::json selection_json(const labelmap::Selection& s, const TriangleSurfac
           {"surface_triangles", surface.F.rows()}};
 }
 
-} // namespace
-
-int parse_label(const std::string& text, const std::string& what)
+/// The names of the map's labels: its segment names, then those of its colour table (the one
+/// the config gives, else every table beside the map); the tables read go to `tables`.
+std::vector<labelmap::LabelName> label_names(const BuildConfig& config,
+                                             const labelmap::LabelImage& image,
+                                             std::vector<fs::path>& tables)
 {
-  const bool number = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) {
-    return std::isdigit(c) != 0;
-  });
-  if (!number)
-    fail("{} '{}': give the label's number (names are not read yet)", what, text);
-  return std::stoi(text);
+  std::vector<labelmap::LabelName> names = image.segment_names;
+  if (!config.colour_table.empty()) {
+    if (!fs::is_regular_file(config.colour_table))
+      fail("missing colour table '{}'", config.colour_table.string());
+    tables = {config.colour_table};
+  } else {
+    for (const fs::path& table : labelmap::colour_tables_beside(config.labels))
+      if (fs::is_regular_file(table))
+        tables.push_back(table);
+  }
+  for (const fs::path& table : tables) {
+    const std::vector<labelmap::LabelName> more = labelmap::read_colour_table(table);
+    names.insert(names.end(), more.begin(), more.end());
+  }
+  return names;
 }
+
+} // namespace
 
 BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
                                  nlohmann::json& report)
@@ -47,40 +64,49 @@ BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
   if (config.ligament_label.empty())
     fail("--labels needs --ligament-label (or [input] ligament_label)");
   const labelmap::LabelImage image = labelmap::read_label_image(config.labels);
+  std::vector<fs::path> tables;
+  const std::vector<labelmap::LabelName> names = label_names(config, image, tables);
 
   struct Part {
     const char* name;
     std::string label;
     fs::path BuildConfig::*target;
+    const char* file;
   };
-  const Part parts[] = {{"ligament", config.ligament_label, &BuildConfig::surface},
-                        {"femur", config.femur_label, &BuildConfig::femur},
-                        {"tibia", config.tibia_label, &BuildConfig::tibia}};
+  const Part parts[] = {
+      {"ligament", config.ligament_label, &BuildConfig::surface, ligament_from_labels},
+      {"femur", config.femur_label, &BuildConfig::femur, files::femur},
+      {"tibia", config.tibia_label, &BuildConfig::tibia, files::tibia}};
   std::vector<std::pair<const Part*, TriangleSurface>> surfaces;
+  nlohmann::json table_names = nlohmann::json::array();
+  for (const fs::path& table : tables)
+    table_names.push_back(table.string());
   report = {{"file", config.labels.string()},
             {"frame", "LPS (physical coordinates as ITK reads the image)"},
             {"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
             {"spacing_mm", {image.spacing_mm.x(), image.spacing_mm.y(), image.spacing_mm.z()}},
-            {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}}};
+            {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
+            {"segment_names", image.segment_names.size()},
+            {"colour_tables", table_names}};
   for (const Part& part : parts) {
     if (part.label.empty())
       continue;
-    const int label = parse_label(part.label, fmt::format("{} label", part.name));
     labelmap::Selection selection;
     TriangleSurface surface;
     try {
+      const int label = labelmap::resolve_label(part.label, names, "label");
       surface = labelmap::label_surface(image, label, &selection);
     } catch (const InputError& e) {
       fail("label map '{}', {}: {}", config.labels.string(), part.name, e.what());
     }
-    report[part.name] = selection_json(selection, surface);
+    report[part.name] = selection_json(selection, surface, names);
     surfaces.emplace_back(&part, std::move(surface));
   }
 
   BuildConfig result = config;
   ensure_directory(dir);
   for (const auto& [part, surface] : surfaces) {
-    const fs::path file = dir / fmt::format("labels_{}.vtp", part->name);
+    const fs::path file = dir / part->file;
     write_vtk(io::to_polydata(surface), file);
     result.*(part->target) = file;
   }

@@ -10,15 +10,18 @@
 
 namespace ligsim::pipeline {
 
-/// If `config.labels` is set: reads the label map and extracts the ligament's surface (and the
-/// bones' where their labels are given), checking everything before `dir` is touched; then
-/// writes them into `dir` and returns the config pointing at them, with what was selected in
-/// `report` (frame, spacing, components dropped, holes filled). Otherwise returns `config`.
+/// The ligament's surface from a label map, in the output folder (the bones' are femur.vtp and
+/// tibia.vtp, which the model stage then keeps as they are).
+inline constexpr const char* ligament_from_labels = "labels_ligament.vtp";
+
+/// If `config.labels` is set: reads the label map, resolves the labels (numbers or names: the
+/// map's segment names and its colour table, `config.colour_table` or one beside the map) and
+/// extracts the ligament's surface (and the bones' where their labels are given), checking
+/// everything before `dir` is touched; then writes them into `dir` (ligament_from_labels,
+/// femur.vtp, tibia.vtp) and returns the config pointing at them, with what was selected in
+/// `report` (frame, spacing, label names, components dropped, holes filled). Otherwise returns
+/// `config`.
 BuildConfig surfaces_from_labels(const BuildConfig& config, const std::filesystem::path& dir,
                                  nlohmann::json& report);
-
-/// A label given as text: a number (a name resolves through the map's segment names when
-/// those are read; today only numbers).
-int parse_label(const std::string& text, const std::string& what);
 
 } // namespace ligsim::pipeline

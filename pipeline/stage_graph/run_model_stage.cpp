@@ -34,13 +34,21 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   io::add_flags(grid->GetPointData(), "tibia_attached", built.tibia_nodes);
   write_vtk(grid, dir / files::model);
 
+  // The bones beside the model, for flexion and pictures: a user's surface is copied in; one
+  // already there (from a label map) is kept as it is; a stale one of an earlier build goes.
   std::vector<std::string> bones;
   for (const auto& [file, name] :
-       {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}})
-    if (const auto bone = load_bone(file)) {
-      write_vtk(io::to_polydata(*bone), dir / name);
-      bones.push_back(name);
+       {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}}) {
+    const fs::path target = dir / name;
+    std::error_code ignored;
+    if (file.empty()) {
+      fs::remove(target, ignored);
+      continue;
     }
+    if (!fs::equivalent(file, target, ignored))
+      write_vtk(io::to_polydata(*load_bone(file)), target);
+    bones.push_back(name);
+  }
 
   Eigen::Vector3d femoral_mean = Eigen::Vector3d::Zero();
   for (int v : areas.femur)

@@ -6,6 +6,7 @@
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
 #include <itkImageIOBase.h>
+#include <itkMetaDataObject.h>
 #include <itkMetaImageIOFactory.h>
 #include <itkNiftiImageIOFactory.h>
 #include <itkNrrdImageIOFactory.h>
@@ -74,6 +75,11 @@ RawLabelImage read(const fs::path& file)
   } catch (const itk::ExceptionObject& e) {
     fail("cannot read label map '{}': {}", file.string(), e.GetDescription());
   }
+  // ITK reads the layers of a layered .seg.nrrd (NRRD kind "list") as components per voxel.
+  if (io->GetNumberOfDimensions() == 3 && io->GetNumberOfComponents() > 1)
+    fail("label map '{}' holds {} layers (a segmentation whose segments overlap): one 3-D layer "
+         "of labels is needed (export a single-layer segmentation, its segments not overlapping)",
+         file.string(), io->GetNumberOfComponents());
   if (io->GetNumberOfDimensions() != 3 || io->GetNumberOfComponents() != 1)
     fail("label map '{}' has {} dimensions and {} components per voxel: one 3-D layer of labels "
          "is needed (export a single-layer segmentation)",
@@ -101,6 +107,12 @@ RawLabelImage read(const fs::path& file)
   }
   const std::int32_t* data = image->GetBufferPointer();
   result.labels.assign(data, data + region.GetNumberOfPixels());
+  const itk::MetaDataDictionary& dictionary = image->GetMetaDataDictionary();
+  for (const std::string& key : dictionary.GetKeys()) {
+    std::string value;
+    if (itk::ExposeMetaData<std::string>(dictionary, key, value))
+      result.key_values.emplace_back(key, value);
+  }
   return result;
 }
 
@@ -128,6 +140,8 @@ void write(const RawLabelImage& label_image, const fs::path& file)
   image->SetDirection(direction);
   image->Allocate();
   std::copy(label_image.labels.begin(), label_image.labels.end(), image->GetBufferPointer());
+  for (const auto& [key, value] : label_image.key_values)
+    itk::EncapsulateMetaData<std::string>(image->GetMetaDataDictionary(), key, value);
 
   // A temporary beside the target that keeps the whole name's ending (.nii.gz picks ITK's
   // writer), renamed over it once complete.

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace ligsim::labelmap::itk_io {
@@ -15,6 +17,8 @@ struct RawLabelImage {
   std::array<double, 3> origin_mm{};
   std::array<double, 9> direction{}; ///< row-major 3 x 3; columns are the index axes
   std::vector<std::int32_t> labels;  ///< x fastest
+  /// The header's text key/value pairs (NRRD's `key:=value`: Slicer's segment names).
+  std::vector<std::pair<std::string, std::string>> key_values;
 };
 
 /// See labelmap::read_label_image.

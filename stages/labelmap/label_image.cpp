@@ -2,6 +2,9 @@
 
 #include "stages/labelmap/itk_label_io.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 namespace ligsim::labelmap {
 
 LabelImage read_label_image(const std::filesystem::path& file)
@@ -16,6 +19,7 @@ LabelImage read_label_image(const std::filesystem::path& file)
       image.direction(a, b) = raw.direction[3 * a + b];
   }
   image.labels = std::move(raw.labels);
+  image.segment_names = segment_names(raw.key_values, file);
   return image;
 }
 
@@ -30,6 +34,11 @@ void write_label_image(const LabelImage& image, const std::filesystem::path& fil
       raw.direction[3 * a + b] = image.direction(a, b);
   }
   raw.labels = image.labels;
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (!image.segment_names.empty() && extension == ".nrrd")
+    raw.key_values = segment_keys(image.segment_names);
   itk_io::write(raw, file);
 }
 

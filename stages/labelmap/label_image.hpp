@@ -2,6 +2,8 @@
 /// @brief Segmentation label maps (NRRD, NIfTI, MetaImage) in their physical frame, through ITK
 /// (label_image.cpp is the one translation unit that includes it).
 
+#include "stages/labelmap/label_names.hpp"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -19,6 +21,8 @@ struct LabelImage {
   Eigen::Vector3d origin_mm = Eigen::Vector3d::Zero();
   Eigen::Matrix3d direction = Eigen::Matrix3d::Identity(); ///< columns: the index axes
   std::vector<std::int32_t> labels;
+  /// Slicer's segment names from a NRRD header (`SegmentN_Name`, `SegmentN_LabelValue`).
+  std::vector<LabelName> segment_names;
 
   std::size_t index(int i, int j, int k) const
   {
@@ -39,7 +43,8 @@ struct LabelImage {
 /// segmentation included) or not of integer labels.
 LabelImage read_label_image(const std::filesystem::path& file);
 
-/// Writes the image in the format its extension names (the list above), atomically.
+/// Writes the image in the format its extension names (the list above), atomically; a NRRD
+/// file carries the segment names as Slicer's segment keys.
 void write_label_image(const LabelImage& image, const std::filesystem::path& file);
 
 } // namespace ligsim::labelmap

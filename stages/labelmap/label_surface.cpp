@@ -14,6 +14,9 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <deque>
 
 namespace ligsim::labelmap {
@@ -63,6 +66,30 @@ std::vector<long> components(const Eigen::Vector3i& dims, const std::vector<std:
         }
       }
   return sizes;
+}
+
+/// Moves every vertex of the closed, outward-facing `surface` along its (area-weighted) normal
+/// by one distance, so that it encloses `target_mm3`: the smoothing rounds the voxels' edges and
+/// corners and so loses volume (11 % on a 1.5 mm band in 1 mm slices, 3 % on the shipped MCL),
+/// while the voxel count is the segmentation's volume. On the shipped MCL this also brings the
+/// surface nearer the segmented one (rms 0.097 mm instead of 0.100, max 0.35 instead of 0.37).
+void restore_volume(TriangleSurface& surface, double target_mm3)
+{
+  for (int round = 0; round < 2; ++round) { // the offset's own curvature term: a second round
+    Points normals = Points::Zero(surface.V.rows(), 3);
+    double area = 0.0;
+    for (Eigen::Index f = 0; f < surface.F.rows(); ++f) {
+      const Eigen::Vector3d a = surface.V.row(surface.F(f, 0)), b = surface.V.row(surface.F(f, 1)),
+                            c = surface.V.row(surface.F(f, 2));
+      const Eigen::Vector3d twice_area_normal = (b - a).cross(c - a);
+      area += 0.5 * twice_area_normal.norm();
+      for (int corner = 0; corner < 3; ++corner)
+        normals.row(surface.F(f, corner)) += twice_area_normal.transpose();
+    }
+    const double offset_mm = (target_mm3 - signed_volume(surface)) / area;
+    for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+      surface.V.row(v) += offset_mm * normals.row(v).normalized();
+  }
 }
 
 } // namespace
@@ -160,6 +187,10 @@ TriangleSurface label_surface(const LabelImage& image, int label, Selection* sel
     surface.V.row(v) = image.physical_point(surface.V.row(v).transpose()).transpose();
   if (signed_volume(surface) < 0.0)
     surface.F.col(1).swap(surface.F.col(2));
+  if (smoothing_iterations > 0) {
+    const auto voxels = static_cast<double>(std::count(mask.begin(), mask.end(), 1));
+    restore_volume(surface, voxels * image.spacing_mm.prod());
+  }
   return surface;
 }
 

@@ -22,7 +22,8 @@ struct Selection {
 std::vector<std::uint8_t> select_label(const LabelImage& image, int label, Selection* selection);
 
 /// The smooth closed surface of `label` (see select_label), physical LPS coordinates, mm,
-/// outward-facing triangles. `smoothing_iterations` of windowed-sinc smoothing (0: none).
+/// outward-facing triangles. `smoothing_iterations` of windowed-sinc smoothing (0: none), after
+/// which the surface is offset along its normals to enclose the selected voxels' volume.
 TriangleSurface label_surface(const LabelImage& image, int label, Selection* selection = nullptr,
                               int smoothing_iterations = 30);
 

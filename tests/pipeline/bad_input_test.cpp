@@ -158,3 +158,22 @@ TEST(BuildBadInput, StrictRefusesANonManifoldEdgeAndSaysWhere)
                        "three or more triangles (first: vertices 1 (0.00, 1.00, 0.00) and 2 "
                        "(1.00, 0.00, 0.00) mm)");
 }
+
+TEST(BuildBadInput, UnknownOrAmbiguousLabelNamesAreNamed)
+{
+  const std::string knee = source_path("data/vhf-right-knee/knee_labels.nrrd").string();
+  // The shipped map names its labels MCL, femoral_cartilage, tibia.
+  expect_clean_failure("build --labels " + knee + " --ligament-label ACL",
+                       fresh_folder("unknown_label"), "'ACL' is not a label of this map");
+  expect_clean_failure("build --labels " + knee + " --ligament-label ACL",
+                       fresh_folder("unknown_label_list"), "'MCL' (1)");
+  // A colour table that gives the name 'mcl' to another label makes 'Mcl' ambiguous.
+  const fs::path table = write_text("ambiguous.ctbl", "1 MCL 1 2 3 255\n2 mcl 1 2 3 255\n");
+  expect_clean_failure("build --labels " + knee + " --colour-table " + table.string() +
+                           " --ligament-label Mcl",
+                       fresh_folder("ambiguous_label"), "'Mcl' is ambiguous");
+  expect_clean_failure("build --labels " + knee + " --colour-table /nonexistent/names.ctbl" +
+                           " --ligament-label MCL",
+                       fresh_folder("missing_table"), "missing colour table");
+  fs::remove(table);
+}

@@ -253,7 +253,8 @@ TEST(Build, DefectiveMclIsRepairedIntoAValidModel)
 
 TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
 {
-  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces.
+  // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces, its labels
+  // given by name (segment names in its header, and its colour table).
   const fs::path out = fresh_folder("mcl_labels");
   const CliResult result =
       run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl_labels.toml").string() +
@@ -264,18 +265,60 @@ TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
   const nlohmann::json& labels = summary["results"]["label_map"];
   EXPECT_EQ(labels["spacing_mm"], nlohmann::json::array({0.3, 0.3, 1.0}));
   EXPECT_NE(labels["frame"].get<std::string>().find("LPS"), std::string::npos);
-  for (const char* part : {"ligament", "femur", "tibia"}) {
+  EXPECT_GT(labels["wall_s"].get<double>(), 0.0);
+  const std::map<std::string, std::pair<int, std::string>> parts = {
+      {"ligament", {1, "labels_ligament.vtp"}},
+      {"femur", {2, "femur.vtp"}},
+      {"tibia", {3, "tibia.vtp"}}};
+  for (const auto& [part, expected] : parts) {
+    EXPECT_EQ(labels[part]["label"].get<int>(), expected.first) << part;
+    EXPECT_EQ(labels[part]["names"].size(), 2u) << part; // header and colour table
     EXPECT_EQ(labels[part]["components"].get<int>(), 1) << part;
-    EXPECT_TRUE(fs::exists(out / ("labels_" + std::string(part) + ".vtp"))) << part;
+    EXPECT_TRUE(fs::exists(out / expected.second)) << part;
   }
+  // The bones are written once, by the label step, under the names the flexion job reads.
+  for (const char* stale : {"labels_femur.vtp", "labels_tibia.vtp"})
+    EXPECT_FALSE(fs::exists(out / stale)) << stale;
   const nlohmann::json& mesh = summary["stages"]["tetmesh"]["figures"];
   EXPECT_GT(mesh["min_volume_mm3"].get<double>(), 0.0);
-  // The smooth label surface keeps the segmented MCL's volume.
+  // The smooth label surface keeps the segmented MCL's volume and lies on it, within a
+  // fraction of the 1 mm slices. Measured: 777.6 of 776.2 mm^3; rms 0.097, max 0.35 mm.
   const TriangleSurface mcl =
       io::read_surface(source_path("data/vhf-right-knee/VHF_Right_Ligament_MCL_smooth.stl"));
   const TriangleSurface from_labels = io::read_surface(out / "labels_ligament.vtp");
   EXPECT_TRUE(check_topology(from_labels).closed_manifold());
   EXPECT_NEAR(std::abs(signed_volume(from_labels)), std::abs(signed_volume(mcl)),
-              0.05 * std::abs(signed_volume(mcl)));
+              0.01 * std::abs(signed_volume(mcl)));
+  const SurfaceQuery segmented(mcl);
+  double squares = 0.0, farthest_mm = 0.0;
+  for (Eigen::Index v = 0; v < from_labels.V.rows(); ++v) {
+    const double d = segmented.distance(from_labels.V.row(v).transpose());
+    squares += d * d;
+    farthest_mm = std::max(farthest_mm, d);
+  }
+  EXPECT_LT(std::sqrt(squares / static_cast<double>(from_labels.V.rows())), 0.15);
+  EXPECT_LT(farthest_mm, 0.5);
   expect_centerline_inside_between_attachments(out, from_labels, 2.0);
+  // The bones' surfaces from their labels are closed (the image border closes them).
+  for (const char* bone : {"femur.vtp", "tibia.vtp"}) {
+    const TriangleSurface surface = io::read_surface(out / bone);
+    EXPECT_TRUE(check_topology(surface).closed_manifold()) << bone;
+    EXPECT_GT(signed_volume(surface), 0.0) << bone; // facing outward
+  }
+
+  // The flexion job finds the model's bones: the axis is fitted to the label map's cartilage,
+  // and contact keeps the ligament out of both bones.
+  const fs::path flexion = fresh_folder("mcl_labels_flexion");
+  const CliResult flexed = run_ligsim(
+      "flexion --config " + source_path("data/vhf-right-knee/flexion.toml").string() + " --model " +
+      out.string() + " --angles 0,15 --no-images --out " + flexion.string());
+  ASSERT_EQ(flexed.exit_code, 0) << flexed.stderr_text;
+  const nlohmann::json swept = read_summary(flexion);
+  EXPECT_GT(swept["parameters"]["axis"]["direction"][0].get<double>(), 0.95); // mediolateral
+  ASSERT_EQ(swept["results"]["angles"].size(), 2u);
+  for (const nlohmann::json& angle : swept["results"]["angles"]) {
+    EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();
+    for (const char* bone : {"femur", "tibia"})
+      EXPECT_LT(angle["contact"][bone]["penetration_mm"].get<double>(), 0.05) << angle.dump();
+  }
 }

@@ -114,7 +114,7 @@ TEST(LabelImage, SurfaceLandsOnTheCylinderWithoutTheSliceStaircase)
   // The label's voxels hold 7 % more than the analytic cylinder (a radius of 3 mm sampled by
   // 1 mm slices): the surface must keep the voxels' volume, and sit on the analytic radius.
   const double voxel_volume = static_cast<double>(selection.voxels) * image.spacing_mm.prod();
-  EXPECT_NEAR(signed_volume(smooth), voxel_volume, 0.03 * voxel_volume);
+  EXPECT_NEAR(signed_volume(smooth), voxel_volume, 0.001 * voxel_volume);
   const Eigen::Vector3d centroid = smooth.V.colwise().mean().transpose();
   EXPECT_LT((centroid - centre).norm(), 0.3);
   double mean_radial_error = 0.0;
@@ -123,7 +123,8 @@ TEST(LabelImage, SurfaceLandsOnTheCylinderWithoutTheSliceStaircase)
     mean_radial_error += ((p - p.dot(axis) * axis).norm() - kRadius) / smooth.V.rows();
   }
   EXPECT_LT(std::abs(mean_radial_error), 0.05);
-  // Measured: 0.144 mm smoothed, 0.180 mm as extracted (a fifth and a sixth of a slice).
+  // Measured: 0.163 mm smoothed, 0.180 mm as extracted (a sixth of a slice); the mean radial
+  // error 0.029 mm (the voxels' 7 % over the analytic volume).
   const double rms_smooth = radial_rms(smooth), rms_stairs = radial_rms(stairs);
   EXPECT_LT(rms_smooth, 0.2);
   EXPECT_LT(rms_smooth, rms_stairs);
