@@ -76,6 +76,36 @@ double parabola_extremum(const PathPoint& a, const PathPoint& b, const PathPoint
   return b.load_factor - slope_at_b * slope_at_b / (4.0 * curvature);
 }
 
+/// Whether the load factor turns at path point i (0 < i < size - 1).
+bool turns_at(const std::vector<PathPoint>& path, std::size_t i)
+{
+  return i > 0 && i + 1 < path.size() &&
+         (path[i].load_factor - path[i - 1].load_factor) *
+                 (path[i + 1].load_factor - path[i].load_factor) <
+             0.0;
+}
+
+/// The load factor turning at point i: a limit point, at the parabola's extremum.
+CriticalPoint limit_point(const std::vector<PathPoint>& path, std::size_t i)
+{
+  return {"limit point", parabola_extremum(path[i - 1], path[i], path[i + 1]),
+          path[i - 1].load_factor, path[i + 1].load_factor, static_cast<int>(i)};
+}
+
+/// The inertia changing between points i and i + 1 where the load factor turns at neither
+/// (once the point after i + 1 exists, or i + 1 is the last).
+bool bifurcation_between(const std::vector<PathPoint>& path, std::size_t i)
+{
+  return i + 1 < path.size() && path[i].negative_eigenvalues != path[i + 1].negative_eigenvalues &&
+         !turns_at(path, i) && !turns_at(path, i + 1);
+}
+
+CriticalPoint bifurcation(const std::vector<PathPoint>& path, std::size_t i)
+{
+  return {"bifurcation", 0.5 * (path[i].load_factor + path[i + 1].load_factor), path[i].load_factor,
+          path[i + 1].load_factor, static_cast<int>(i + 1)};
+}
+
 } // namespace
 
 BodyEquilibrium::BodyEquilibrium(const HyperelasticBody& body, const BoundaryConditions& conditions)
@@ -226,25 +256,11 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
     result.path.push_back(
         {lambda, result.path.back().arc + chord, tangent.negative_eigenvalues(), iterations});
 
-    // Critical points: the load factor turning at a point is a limit point; the inertia
-    // changing between two points where it turns at neither, a bifurcation.
     const std::size_t n = result.path.size();
-    auto turns_at = [&](std::size_t i) {
-      return (result.path[i].load_factor - result.path[i - 1].load_factor) *
-                 (result.path[i + 1].load_factor - result.path[i].load_factor) <
-             0.0;
-    };
-    if (n >= 3 && turns_at(n - 2))
-      result.critical_points.push_back(
-          {"limit point",
-           parabola_extremum(result.path[n - 3], result.path[n - 2], result.path[n - 1]),
-           static_cast<int>(n - 2)});
-    if (n >= 4 &&
-        result.path[n - 3].negative_eigenvalues != result.path[n - 2].negative_eigenvalues &&
-        !turns_at(n - 3) && !turns_at(n - 2))
-      result.critical_points.push_back(
-          {"bifurcation", 0.5 * (result.path[n - 3].load_factor + result.path[n - 2].load_factor),
-           static_cast<int>(n - 2)});
+    if (n >= 3 && turns_at(result.path, n - 2))
+      result.critical_points.push_back(limit_point(result.path, n - 2));
+    if (n >= 3 && bifurcation_between(result.path, n - 3))
+      result.critical_points.push_back(bifurcation(result.path, n - 3));
 
     if ((lambda_old - target) * (lambda - target) <= 0.0) {
       // The path crossed the target: Newton at the target from the chord's interpolation.
@@ -256,6 +272,14 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
       if (found) {
         u = at_target;
         result.reached = true;
+        // The target replaces the point beyond it: the last segment is checked too.
+        tangent.factorize(system, u);
+        const double to_target = std::sqrt(w * (u - u_old).squaredNorm() +
+                                           (target - lambda_old) * (target - lambda_old));
+        result.path.back() = {target, result.path[n - 2].arc + to_target,
+                              tangent.negative_eigenvalues(), iterations + newton};
+        if (bifurcation_between(result.path, n - 2))
+          result.critical_points.push_back(bifurcation(result.path, n - 2));
         return result;
       }
       result.failure = fmt::format("step {}: the path crosses load factor {:g}, but Newton "

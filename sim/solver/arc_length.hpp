@@ -80,8 +80,12 @@ struct CriticalPoint {
   /// "limit point" (the load factor turns: a maximum or minimum along the path) or
   /// "bifurcation" (the inertia changes while the load factor keeps its direction).
   std::string kind;
-  double load_factor = 0.0; ///< limit point: the extremum of a parabola through 3 path points
-  int step = 0;             ///< the path point at (limit) or after (bifurcation) it
+  /// Limit point: the extremum of the parabola through the path points around it;
+  /// bifurcation: the middle of its bracket.
+  double load_factor = 0.0;
+  double bracket_from = 0.0; ///< load factors of the path points around it
+  double bracket_to = 0.0;
+  int step = 0; ///< the path point at (limit) or after (bifurcation) it
 };
 
 struct ArcLengthResult {
