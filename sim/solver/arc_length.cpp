@@ -191,8 +191,9 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
   double previous_dlambda = 0.0;
   result.path.push_back({0.0, 0.0, tangent.negative_eigenvalues(), 0});
 
+  bool regular = true; // the tangent at u is factorised and regular
   for (int step = 1; step <= settings.max_steps; ++step) {
-    if (!tangent.factorize(system, u)) {
+    if (!regular) {
       result.failure =
           fmt::format("step {}: the tangent is singular at load factor {:.6g}", step, lambda);
       return result;
@@ -252,7 +253,7 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
     const double lambda_old = lambda;
     u = u_new;
     lambda = lambda_new;
-    tangent.factorize(system, u);
+    regular = tangent.factorize(system, u); // for the inertia here and the next predictor
     result.path.push_back(
         {lambda, result.path.back().arc + chord, tangent.negative_eigenvalues(), iterations});
 

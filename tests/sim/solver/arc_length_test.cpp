@@ -213,6 +213,30 @@ TEST(ArcLength, TheLimitLoadConvergesWithTheArcLength)
   }
 }
 
+TEST(ArcLength, FactorisesTheTangentOncePerConvergedPoint)
+{
+  // The tangent factorised at a converged point gives its inertia and the next predictor; it is
+  // not factorised again at the top of the next step. Tangents: the start, one per corrector
+  // iteration (Newton at the target included), one per converged point, one at the target.
+  class CountingTruss : public VonMisesTruss {
+  public:
+    void tangent(const Eigen::VectorXd& u, Eigen::SparseMatrix<double>& K) const override
+    {
+      ++evaluations;
+      VonMisesTruss::tangent(u, K);
+    }
+    mutable int evaluations = 0;
+  };
+  const CountingTruss truss;
+  Eigen::VectorXd u = Eigen::Vector2d(0.0, VonMisesTruss::h);
+  ArcLengthSettings settings;
+  settings.first_load_increment = 0.02;
+  const ArcLengthResult result = follow_path(truss, u, settings);
+  ASSERT_TRUE(result.reached) << result.failure;
+  const int converged_points = static_cast<int>(result.path.size()) - 1; // the start excluded
+  EXPECT_EQ(truss.evaluations, 1 + result.newton_iterations + converged_points + 1);
+}
+
 TEST(ArcLength, AgreesWithTheLoadControlledSolverWhereThePathIsStable)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
