@@ -8,9 +8,14 @@ function(ligsim_library name)
   target_compile_options(${name} PRIVATE -Wall -Wextra -Wpedantic)
 endfunction()
 
-# ligsim_test(NAME SOURCES ... DEPS ...): one GoogleTest executable per tested folder.
+# ligsim_test(NAME SOURCES ... DEPS ... [FIXTURES f]): one GoogleTest executable per tested
+# folder; FIXTURES names ctest fixtures (tests that make their inputs) its tests need.
 function(ligsim_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "FIXTURES" "SOURCES;DEPS" ${ARGN})
+  set(fixtures "")
+  if(ARG_FIXTURES)
+    set(fixtures FIXTURES_REQUIRED ${ARG_FIXTURES})
+  endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest_main)
   target_compile_options(${name} PRIVATE -Wall -Wextra)
@@ -18,5 +23,5 @@ function(ligsim_test name)
     LIGSIM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     LIGSIM_BINARY="$<TARGET_FILE:ligsim>")
   gtest_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
-    DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
+    DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900 ${fixtures})
 endfunction()

@@ -6,8 +6,10 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "common/svg_plot.hpp"
+#include "sim/flexion/flexion_config.hpp"
 #include "sim/verify/cube_compression.hpp"
 #include "sim/verify/cube_verification.hpp"
+#include "sim/verify/flexion_stability.hpp"
 #include "sim/verify/stability.hpp"
 #include "sim/verify/sweep.hpp"
 
@@ -251,10 +253,76 @@ struct StabilityOptions {
   fs::path out;
   int cells = 8;
   std::vector<std::string> cases;
+  std::string suite = "cube";
+  fs::path model;
+  fs::path fine_model;
+  fs::path config = "data/vhf-right-knee/flexion.toml";
+  std::vector<double> angles;
 };
+
+/// `--suite flexion`: the knee model's extreme cases (sim/verify/flexion_stability).
+void run_flexion_stability(const StabilityOptions& options)
+{
+  RunSummary summary("verify stability --suite flexion");
+  if (options.model.empty())
+    fail("verify stability --suite flexion: pass --model DIR, a model built by `ligsim build` "
+         "(the coarse one; --fine-model DIR for the fine cases)");
+  sim::FlexionSettings base;
+  sim::read_flexion_config(options.config, base);
+  summary.inputs()["model"] = options.model.string();
+  summary.inputs()["fine_model"] = options.fine_model.string();
+  summary.inputs()["config"] = options.config.string();
+  sim::FlexionStabilitySuite suite =
+      options.angles.empty()
+          ? sim::FlexionStabilitySuite(base, options.model, options.fine_model)
+          : sim::FlexionStabilitySuite(base, options.model, options.fine_model, options.angles);
+  summary.parameters()["static_angles_deg"] = suite.static_angles_deg();
+  std::vector<std::string> names = options.cases;
+  if (names.empty())
+    for (const sim::StabilityCase& c : sim::FlexionStabilitySuite::cases())
+      names.push_back(c.name);
+  ensure_directory(options.out);
+  std::vector<sim::FlexionCaseResult> results;
+  StageMeter meter;
+  Progress progress("flexion stability cases", names.size());
+  for (const std::string& name : names) {
+    results.push_back(suite.run(name, options.out));
+    const sim::FlexionCaseResult& r = results.back();
+    log_info(fmt::format("{}: {} ({} iterations, {:.1f} s, max fiber strain {:.1f} %){}", r.name,
+                         r.outcome, r.iterations, r.wall_s, 100.0 * r.max_fiber_strain,
+                         r.diagnostic.empty() ? "" : ": " + r.diagnostic));
+    progress.advance();
+  }
+  progress.finish();
+  summary.add_stage("cases", meter, {{"cases", results.size()}});
+  const nlohmann::json json = sim::flexion_stability_json(results);
+  write_text_atomically(options.out / "stability.json", json.dump(2) + "\n");
+  write_text_atomically(options.out / "stability.csv", sim::flexion_stability_csv(results));
+  write_text_atomically(
+      options.out / "stability.md",
+      fmt::format("# Stability of the knee flexion\n\nModel {} (fine: {}), flexion config {}; "
+                  "contact off except in contact_140. Files of each case in its folder.\n\n",
+                  options.model.string(),
+                  options.fine_model.empty() ? "none" : options.fine_model.string(),
+                  options.config.string()) +
+          sim::flexion_stability_table(results));
+  summary.results() = json;
+  summary.write(options.out);
+  int failed = 0;
+  for (const sim::FlexionCaseResult& r : results)
+    failed += r.outcome == "FAILED" ? 1 : 0;
+  if (failed > 0)
+    fail<SolverError>("{} flexion stability cases ended without an answer or a diagnostic, or "
+                      "wrote a non-finite value (see stability.md)",
+                      failed);
+}
 
 void run_stability(const StabilityOptions& options)
 {
+  if (options.suite == "flexion") {
+    run_flexion_stability(options);
+    return;
+  }
   RunSummary summary("verify stability");
   summary.parameters()["cells"] = options.cells;
   std::vector<std::string> names = options.cases;
@@ -329,6 +397,22 @@ void add_verify_command(CLI::App& app)
   stability->add_option("--cells", stability_options->cells, "hexes per cube edge")
       ->capture_default_str();
   stability->add_option("--cases", stability_options->cases, "only these cases")->delimiter(',');
+  stability
+      ->add_option("--suite", stability_options->suite,
+                   "cube (default: the unit cube's stiff cases) or flexion (the knee model)")
+      ->check(CLI::IsMember({"cube", "flexion"}));
+  stability->add_option("--model", stability_options->model,
+                        "flexion: the coarse model folder (output of `ligsim build`)");
+  stability->add_option("--fine-model", stability_options->fine_model,
+                        "flexion: the fine model folder (its cases are skipped without it)");
+  stability
+      ->add_option("--config", stability_options->config,
+                   "flexion: the flexion config giving axis, material and solver")
+      ->capture_default_str();
+  stability
+      ->add_option("--angles", stability_options->angles,
+                   "flexion: the quasi-static angles, deg (default 0,20,...,140)")
+      ->delimiter(',');
   stability->callback([stability_options] { run_stability(*stability_options); });
 }
 

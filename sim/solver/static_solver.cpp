@@ -462,13 +462,13 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
           result.critical_mode = stability_mode(x);
         result.critical_load_factor = t;
         result.stop_kind = result.critical_mode ? result.critical_mode->kind() : "failed step";
-        result.failure = fmt::format("load step {} (load factor {:.4g}) failed after {} "
+        result.failure = fmt::format("load step {} (load factor {:.6g}) failed after {} "
                                      "cut-backs: {}",
                                      step, t_next, report.cutbacks - 1, m_failure);
         if (result.critical_mode)
           result.failure +=
-              fmt::format(". The path meets a {} between load factors {:.4g} "
-                          "and {:.4g}: at {:.4g}, {}",
+              fmt::format(". The path meets a {} between load factors {:.6g} "
+                          "and {:.6g}: at {:.6g}, {}",
                           result.stop_kind, t, t_next, t, result.critical_mode->describe());
         report.wall_s = seconds_since(step_start);
         report.load_factor = t;

@@ -4,6 +4,7 @@
 #include "common/resources.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
+#include "sim/solver/arc_length.hpp"
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
 #include "sim/verify/contact_stability.hpp"
@@ -31,7 +32,24 @@ struct CubeSetup {
   NewtonSettings newton;
   /// Set for a dynamic case.
   std::optional<DynamicsSettings> dynamics;
+  /// Follow the path by arc-length continuation instead of load control.
+  bool arc_length = false;
 };
+
+/// The critical points an arc-length path met, in one line ("" when none).
+std::string describe_critical_points(const ArcLengthResult& run)
+{
+  std::string text;
+  for (const CriticalPoint& point : run.critical_points) {
+    const PathPoint& after = run.path[static_cast<std::size_t>(point.step)];
+    const PathPoint& before = run.path[static_cast<std::size_t>(point.step) - 1];
+    text += fmt::format("{}{} at load factor {:.4g} (between path points at {:.4g} and {:.4g}; "
+                        "negative eigenvalues {} -> {})",
+                        text.empty() ? "" : "; ", point.kind, point.load_factor, point.bracket_from,
+                        point.bracket_to, before.negative_eigenvalues, after.negative_eigenvalues);
+  }
+  return text;
+}
 
 CubeSetup default_setup(int cells)
 {
@@ -93,6 +111,17 @@ StabilityResult run_setup(const CubeSetup& setup)
       result.converged = run.completed;
       result.diagnostic = run.failure;
       result.iterations = run.frames;
+    } else if (setup.arc_length) {
+      const BodyEquilibrium system(body, conditions);
+      Eigen::VectorXd u = system.rest_unknowns();
+      const ArcLengthResult run = follow_path(system, u);
+      x = system.positions(u);
+      result.converged = run.reached;
+      result.iterations = run.newton_iterations;
+      result.diagnostic = run.reached ? describe_critical_points(run) : run.failure;
+      body.energy_gradient(x, residual);
+      residual -= DofPartition(body.node_count(), conditions, body.unreferenced_nodes())
+                      .external_forces(conditions);
     } else {
       StaticSolver solver(body, conditions, setup.newton);
       const StaticResult run = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
@@ -155,6 +184,13 @@ std::vector<CaseDefinition> definitions()
       {{"compression_0.20", "compression along the fibers, 0.2 N per node"}, [](CubeSetup& s) {
          s.total_load_n = {0, 0, -0.2 * 289};
        }});
+  list.push_back({{"compression_0.20_arc_length",
+                   "compression along the fibers, 0.2 N per node, by arc-length continuation: "
+                   "where the straight column's tangent turns indefinite"},
+                  [](CubeSetup& s) {
+                    s.total_load_n = {0, 0, -0.2 * 289};
+                    s.arc_length = true;
+                  }});
   for (double dt : {1e-5, 1e-3, 1e-1, 1.0})
     list.push_back({{fmt::format("dynamic_dt_{:.0e}", dt),
                      fmt::format("implicit Euler, time step {:.0e} s, 40 frames, 0.2 N per node "

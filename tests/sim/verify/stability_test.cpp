@@ -42,14 +42,30 @@ TEST_P(Stability, ConvergesOrStopsWithADiagnostic)
                 std::string::npos)
           << result.diagnostic;
     }
+    if (name == "compression_0.20_arc_length") { // the path's critical points, named
+      EXPECT_EQ(result.diagnostic.rfind("bifurcation at load factor", 0), 0u) << result.diagnostic;
+      EXPECT_NE(result.diagnostic.find("negative eigenvalues 0 -> "), std::string::npos)
+          << result.diagnostic;
+    }
   }
+}
+
+TEST(Stability, ArcLengthAndLoadControlReachTheSameCompressedEquilibrium)
+{
+  const StabilityResult load_control = run_stability_case("compression_0.20", 4);
+  const StabilityResult arc_length = run_stability_case("compression_0.20_arc_length", 4);
+  ASSERT_EQ(load_control.outcome, "converged");
+  ASSERT_EQ(arc_length.outcome, "converged");
+  EXPECT_NEAR(arc_length.max_displacement_mm, load_control.max_displacement_mm, 1e-9);
+  EXPECT_NEAR(arc_length.min_j, load_control.min_j, 1e-9);
 }
 
 INSTANTIATE_TEST_SUITE_P(Suite, Stability,
                          ::testing::Values("bulk_modulus_1e+02", "bulk_modulus_1e+06", "c5_1e+04",
                                            "load_x10", "compression_0.05", "compression_0.20",
-                                           "dynamic_dt_1e-05", "dynamic_dt_1e+00",
-                                           "inverted_element", "sliver", "nan_node"),
+                                           "compression_0.20_arc_length", "dynamic_dt_1e-05",
+                                           "dynamic_dt_1e+00", "inverted_element", "sliver",
+                                           "nan_node"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& c : name)
