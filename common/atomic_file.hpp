@@ -8,7 +8,9 @@ namespace ligsim {
 
 /// A temporary sibling of `target` to write into; commit() renames it over the target.
 /// If commit() is never called (an exception, an early return) the temporary is removed
-/// and the target is untouched.
+/// and the target is untouched. A job killed with SIGKILL leaves its temporary behind (hidden:
+/// ".<stem>.tmp-<pid><ext>"); the next write of the same target removes it once that process
+/// is gone.
 class AtomicFile {
 public:
   explicit AtomicFile(std::filesystem::path target);

@@ -9,6 +9,7 @@
 
 #include <fstream>
 #include <set>
+#include <system_error>
 
 namespace ligsim::pipeline {
 
@@ -100,6 +101,11 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
       continue;
     }
     log_info(fmt::format("{}: {}", stage->name, stage->description));
+    // The old record goes before the first output is replaced: a run killed halfway through the
+    // stage leaves no record, so a later run never takes a mix of old and new outputs as the
+    // old parameters' result.
+    std::error_code ignored;
+    fs::remove(cache_file(dir, stage->name), ignored);
     const StageMeter meter;
     nlohmann::json figures = stage->run(config, dir);
     summary.add_stage(stage->name, meter, {{"status", "ran"}, {"figures", figures}});

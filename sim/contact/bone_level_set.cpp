@@ -4,6 +4,7 @@
 #include "common/content_hash.hpp"
 #include "common/error.hpp"
 #include "common/resources.hpp"
+#include "common/vdb_file_id.hpp"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -146,6 +147,7 @@ std::unique_ptr<BoneLevelSet> BoneLevelSet::cached(const TriangleSurface& surfac
   openvdb::io::File file(out.temp_path().string());
   file.write(grids, meta);
   file.close();
+  make_vdb_file_id_reproducible(out.temp_path());
   out.commit();
   return level_set;
 }

@@ -1,6 +1,7 @@
 #include "stages/voxelize/level_set.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/vdb_file_id.hpp"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -72,6 +73,7 @@ ScalarGrid level_set(const TriangleSurface& surface, const LevelSetRequest& requ
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     AtomicFile file(vdb_file);
     openvdb::io::File(file.temp_path().string()).write({grid});
+    make_vdb_file_id_reproducible(file.temp_path());
     file.commit();
   }
   return sampled;

@@ -5,6 +5,9 @@
 
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -54,4 +57,26 @@ TEST(AtomicFile, CommitWithoutWriteIsAnError)
   ligsim::AtomicFile file(dir / "a.txt");
   EXPECT_THROW(file.commit(), ligsim::InputError);
   EXPECT_FALSE(fs::exists(dir / "a.txt"));
+}
+
+TEST(AtomicFile, NextWriteRemovesTemporaryOfAKilledWriter)
+{
+  const fs::path dir = fresh_dir("atomic_orphan");
+  // A process that has ended, as one killed halfway through its write.
+  const pid_t gone = ::fork();
+  ASSERT_GE(gone, 0);
+  if (gone == 0)
+    ::_exit(0);
+  ASSERT_EQ(::waitpid(gone, nullptr, 0), gone);
+  const fs::path orphan = dir / (".a.tmp-" + std::to_string(gone) + ".txt");
+  const fs::path running = dir / (".a.tmp-" + std::to_string(::getppid()) + ".txt");
+  const fs::path other_target = dir / (".b.tmp-" + std::to_string(gone) + ".txt");
+  for (const fs::path& file : {orphan, running, other_target})
+    std::ofstream(file) << "half";
+
+  ligsim::write_text_atomically(dir / "a.txt", "good");
+  EXPECT_EQ(read_all(dir / "a.txt"), "good");
+  EXPECT_FALSE(fs::exists(orphan));
+  EXPECT_TRUE(fs::exists(running)) << "a writer still running keeps its temporary";
+  EXPECT_TRUE(fs::exists(other_target)) << "only the written target's temporaries go";
 }
