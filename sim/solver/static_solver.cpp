@@ -428,6 +428,11 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
   };
   double t = 0.0;
   SubstepController substeps; // carried from one output step to the next
+  // Tenths of the load factor on stderr once a solve has run for a second (a 20,000-tet cube
+  // past its bifurcation takes minutes in sub-steps of one nominal step).
+  constexpr std::size_t kProgressUnits = 1000;
+  Progress progress("static solve, load factor", kProgressUnits);
+  std::size_t progress_done = 0;
   for (int step = 1; step <= steps; ++step) {
     const auto step_start = std::chrono::steady_clock::now();
     StepReport report;
@@ -444,6 +449,11 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       const bool floor_before = report.converged_at_floor;
       if (advance(x, t_next, report)) {
         t = t_next;
+        const auto reached = static_cast<std::size_t>(t * kProgressUnits);
+        if (reached > progress_done) {
+          progress.advance(reached - progress_done);
+          progress_done = reached;
+        }
         if (!in_place)
           substeps.accepted(report.iterations - iterations_before);
         consecutive_cutbacks = 0;
