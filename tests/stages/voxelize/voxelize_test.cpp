@@ -12,9 +12,7 @@ TEST(Voxelize, MaskVolumeMatchesTheSurfaceVolume)
        {synthetic::cylinder(3.0, 30.0), synthetic::torus_tube(), synthetic::ligament_band()}) {
     const double volume = signed_volume(shape.surface);
     const auto v = test::voxelise(std::move(shape), 0.3);
-    std::size_t inside = 0;
-    for (auto value : v.mask.values)
-      inside += value;
+    const std::size_t inside = inside_count(v.mask);
     const double voxel_volume = inside * std::pow(v.mask.spacing, 3);
     EXPECT_NEAR(voxel_volume, volume, 0.02 * volume);
     // The padding keeps the border outside.
@@ -33,8 +31,8 @@ TEST(Voxelize, AgreesWithPointInsideTestsOnARotatedShape)
   const auto v =
       test::voxelise(test::transformed(synthetic::torus_tube(), rotation, {1, 2, 3}), 0.5);
   int disagreements = 0;
-  for (std::size_t i = 0; i < v.mask.values.size(); i += 7)
-    if ((v.mask.values[i] != 0) != v.query.inside(v.mask.point(i)) &&
+  for (std::size_t i = 0; i < v.mask.voxel_count(); i += 7)
+    if ((v.mask.at(i) != 0) != v.query.inside(v.mask.point(i)) &&
         v.query.distance(v.mask.point(i)) > kSignUndecidedVoxels * v.mask.spacing)
       ++disagreements;
   EXPECT_EQ(disagreements, 0);
@@ -78,7 +76,7 @@ TEST(Voxelize, SignIsNotFooledByDefectsThatBreakRayParity)
   const Mask mask = voxelize::voxelize(damaged, parameters);
   ASSERT_EQ(mask.dims, expected.dims);
   std::size_t disagreements = 0;
-  for (std::size_t v = 0; v < mask.values.size(); ++v)
-    disagreements += mask.values[v] != expected.values[v] ? 1 : 0;
+  for (std::size_t v = 0; v < mask.voxel_count(); ++v)
+    disagreements += mask.at(v) != expected.at(v) ? 1 : 0;
   EXPECT_EQ(disagreements, 0u);
 }
