@@ -27,6 +27,13 @@ openvdb::math::Transform::Ptr transform_of(const Eigen::Vector3d& origin, double
   return transform;
 }
 
+double spacing_of(const openvdb::math::Transform& transform)
+{
+  // The scale as stored. voxelSize() maps unit vectors and measures them, which rounds (0.05
+  // comes back as 0.0499999999999545): every voxel centre and distance would move by that.
+  return transform.baseMap()->getAffineMap()->getMat4()(0, 0);
+}
+
 void set_dims(openvdb::GridBase& grid, const Eigen::Vector3i& dims)
 {
   grid.insertMeta(kDimsKey, openvdb::Vec3IMetadata(openvdb::Vec3i(dims.x(), dims.y(), dims.z())));

@@ -16,6 +16,9 @@ void initialize();
 /// Index space (i, j, k) of our grid to world space, mm.
 openvdb::math::Transform::Ptr transform_of(const Eigen::Vector3d& origin, double spacing);
 
+/// The voxel spacing (mm) that transform_of() was given, exactly.
+double spacing_of(const openvdb::math::Transform& transform);
+
 /// The stored bricks of `grid` as leaves (voxels other than the background active), with the
 /// grid's box recorded as metadata, so from_vdb() restores the same geometry.
 openvdb::FloatGrid::Ptr to_vdb(const ScalarGrid& grid, const std::string& name);
@@ -38,7 +41,7 @@ Grid<T> from_vdb(const openvdb::FloatGrid& vdb_grid, const Eigen::Vector3i& dims
                  Map&& map)
 {
   const openvdb::Vec3d o = vdb_grid.transform().indexToWorld(openvdb::Vec3d(0.0, 0.0, 0.0));
-  Grid<T> grid(dims, {o.x(), o.y(), o.z()}, vdb_grid.transform().voxelSize()[0], background);
+  Grid<T> grid(dims, {o.x(), o.y(), o.z()}, spacing_of(vdb_grid.transform()), background);
   using Leaf = openvdb::FloatTree::LeafNodeType;
   static_assert(Leaf::DIM == Grid<T>::kBrickEdge, "bricks and leaves must line up");
   auto in_box = [&](const openvdb::Coord& c) { return grid.contains(c.x(), c.y(), c.z()); };

@@ -88,7 +88,7 @@ Eigen::Vector3i LevelSet::dims() const
 
 double LevelSet::spacing_mm() const
 {
-  return m_impl->grid->transform().voxelSize()[0];
+  return detail::spacing_of(m_impl->grid->transform());
 }
 
 Mask LevelSet::inside() const

@@ -22,6 +22,7 @@ shift 3
 VOXELS=${*:-0.09 0.05}
 CASES=${CASES:-mcl band}
 SKIP=${SKIP:-}
+UNTIL=${UNTIL:-}
 SRC=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)

@@ -100,6 +100,14 @@ TEST(SparseGrid, VdbRoundTripKeepsGeometryValuesAndBackground)
   for (std::size_t i = 0; i < grid.voxel_count(); ++i)
     ASSERT_EQ(back.at(i), grid.at(i)) << i;
   EXPECT_THROW(vdb::read_grid(file, "other"), InputError);
+  // A spacing that is no binary fraction, far from the origin (the MCL's frame), comes back
+  // exactly: measuring OpenVDB's transform (voxelSize()) gives 0.0499999999999545 for 0.05.
+  ScalarGrid fine({9, 9, 9}, {578.1, 437.2, 449.3}, 0.05, 0.0f);
+  fine.set(4, 4, 4, 1.0f);
+  vdb::write_grid(fine, "fine", file);
+  const ScalarGrid fine_back = vdb::read_grid(file, "fine");
+  EXPECT_EQ(fine_back.spacing, 0.05);
+  EXPECT_EQ(fine_back.origin, fine.origin);
   fs::remove(file);
   EXPECT_THROW(vdb::read_grid(file, "value"), InputError);
 }
