@@ -63,6 +63,9 @@ LevelSet LevelSet::of_surface(const TriangleSurface& surface, const LevelSetRequ
   auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
       mesh, *transform, static_cast<float>(request.exterior_band_voxels),
       std::numeric_limits<float>::max(), openvdb::tools::DISABLE_RENORMALIZATION);
+  // meshToVolume gives the grid a transform whose scale reads back rounded far from the
+  // origin; the index space is the same, so set ours.
+  grid->setTransform(transform);
   grid->setName(kGridName);
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
   detail::set_dims(*grid, request.dims);

@@ -1,5 +1,6 @@
 #include "common/error.hpp"
 #include "stages/geometry/surface_topology.hpp"
+#include "stages/voxelize/level_set.hpp"
 #include "tests/stages/shape_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -44,6 +45,22 @@ TEST(Voxelize, DefaultSpacingIsAnEighthOfTheThickness)
   const double spacing = voxelize::default_spacing(band.surface);
   EXPECT_GT(spacing, 2.0 / 8);
   EXPECT_LT(spacing, 3.5 / 8);
+}
+
+TEST(Voxelize, KeepsTheRequestedSpacingExactlyFarFromTheOrigin)
+{
+  // In the MCL's frame OpenVDB's meshToVolume gave its grid a transform whose scale read back
+  // as 0.0499999999999545 for 0.05, and the stages downstream inherited it.
+  const synthetic::Shape shape = test::transformed(
+      synthetic::cylinder(1.0, 2.0), Eigen::Matrix3d::Identity(), {578.1, 437.2, 449.3});
+  voxelize::Parameters parameters;
+  parameters.spacing_mm = 0.05;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "ligsim_voxelize_spacing.vdb";
+  const Mask mask = voxelize::voxelize(shape.surface, parameters, file);
+  EXPECT_EQ(mask.spacing, 0.05);
+  EXPECT_EQ(vdb::LevelSet::read(file).spacing_mm(), 0.05);
+  std::filesystem::remove(file);
 }
 
 TEST(Voxelize, RefusesAGridTooLargeForMemory)
