@@ -7,12 +7,13 @@
 #include "stages/centerline/centerline.hpp"
 #include "stages/fibers/fibers.hpp"
 #include "stages/field/field.hpp"
+#include "stages/geometry/grid_vdb.hpp"
+#include "stages/geometry/grid_vti.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/io/vtk_convert.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -97,8 +98,10 @@ nlohmann::json run_field(const BuildConfig& config, const fs::path& dir)
   const SurfaceQuery query(load_ligament(config));
   const Polyline line = load_centerline(dir);
   const field::Field field = field::diffusion_field(load_mask(dir), line, query, config.field);
-  write_vtk(io::to_image(field.values, "D"), dir / files::field);
-  nlohmann::json figures = {{"method", field::to_string(config.field.method)}};
+  vdb::write_grid(field.values, "D", dir / files::field_vdb);
+  write_vti(field.values, "D", dir / files::field);
+  nlohmann::json figures = grid_json(field.values);
+  figures["method"] = field::to_string(config.field.method);
   if (config.field.method == field::Method::geometric) {
     figures["rays_missed"] = field.rays_missed;
     figures["voxels_behind_a_fold"] = field.clamped;

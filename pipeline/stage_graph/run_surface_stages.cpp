@@ -5,12 +5,13 @@
 #include "common/vtk_files.hpp"
 #include "stages/attachments/attachments.hpp"
 #include "stages/distance/distance.hpp"
+#include "stages/geometry/grid_vdb.hpp"
+#include "stages/geometry/grid_vti.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/tetmesh/tetmesh.hpp"
 #include "stages/voxelize/voxelize.hpp"
 
-#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
@@ -65,24 +66,30 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
 
 nlohmann::json run_voxelize(const BuildConfig& config, const fs::path& dir)
 {
-  const Mask mask =
-      voxelize::voxelize(load_ligament(config), config.voxelize, dir / files::mask_vdb);
-  write_vtk(io::to_image(mask, "inside"), dir / files::mask);
-  const auto inside = std::count(mask.values.begin(), mask.values.end(), 1);
+  const vdb::LevelSet level_set = voxelize::level_set(load_ligament(config), config.voxelize);
+  level_set.write(dir / files::mask_vdb);
+  const Mask mask = level_set.inside();
+  write_vti(mask, "inside", dir / files::mask);
+  const std::size_t inside = inside_count(mask);
   nlohmann::json figures = grid_json(mask);
   figures["inside_voxels"] = inside;
   figures["inside_volume_mm3"] = static_cast<double>(inside) * std::pow(mask.spacing, 3);
+  figures["level_set_active_voxels"] = level_set.active_voxels();
   return figures;
 }
 
 nlohmann::json run_distance(const BuildConfig& config, const fs::path& dir)
 {
   const SurfaceQuery query(load_ligament(config));
-  const Mask mask = load_mask(dir);
-  const ScalarGrid distance = distance::signed_distance(query, mask);
-  write_vtk(io::to_image(distance, "distance"), dir / files::distance);
-  const float d_max = *std::max_element(distance.values.begin(), distance.values.end());
-  return {{"max_inside_distance_mm", d_max}};
+  const ScalarGrid distance =
+      distance::signed_distance(vdb::LevelSet::read(dir / files::mask_vdb), query);
+  vdb::write_grid(distance, "distance", dir / files::distance_vdb);
+  write_vti(distance, "distance", dir / files::distance);
+  float d_max = distance.background();
+  distance.for_each_stored([&](const Eigen::Vector3i&, float d) { d_max = std::max(d_max, d); });
+  nlohmann::json figures = grid_json(distance);
+  figures["max_inside_distance_mm"] = d_max;
+  return figures;
 }
 
 nlohmann::json run_tetmesh(const BuildConfig& config, const fs::path& dir)

@@ -2,8 +2,10 @@
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "stages/geometry/grid_vdb.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
+#include "stages/voxelize/level_set.hpp"
 
 #include <vtkImageData.h>
 #include <vtkPointData.h>
@@ -66,15 +68,15 @@ std::optional<TriangleSurface> load_bone(const fs::path& file)
 
 Mask load_mask(const fs::path& dir)
 {
-  return io::from_image<std::uint8_t>(read_vti(dir / files::mask), "inside");
+  return vdb::LevelSet::read(dir / files::mask_vdb).inside();
 }
 ScalarGrid load_distance(const fs::path& dir)
 {
-  return io::from_image<float>(read_vti(dir / files::distance), "distance");
+  return vdb::read_grid(dir / files::distance_vdb, "distance");
 }
 ScalarGrid load_field(const fs::path& dir)
 {
-  return io::from_image<float>(read_vti(dir / files::field), "D");
+  return vdb::read_grid(dir / files::field_vdb, "D");
 }
 
 Polyline load_centerline(const fs::path& dir)
@@ -102,13 +104,6 @@ StoredAttachments load_attachments(const fs::path& dir)
       result.tibia.push_back(static_cast<int>(v));
   }
   return result;
-}
-
-nlohmann::json grid_json(const Mask& mask)
-{
-  return {{"dims", {mask.dims.x(), mask.dims.y(), mask.dims.z()}},
-          {"spacing_mm", mask.spacing},
-          {"voxels", mask.voxel_count()}};
 }
 
 } // namespace ligsim::pipeline

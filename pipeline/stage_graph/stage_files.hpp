@@ -20,8 +20,10 @@ inline constexpr const char* attachments = "attachments.vtp";
 inline constexpr const char* mask = "mask.vti";
 inline constexpr const char* mask_vdb = "surface.vdb"; ///< the level set, for Houdini/Blender
 inline constexpr const char* distance = "distance.vti";
+inline constexpr const char* distance_vdb = "distance.vdb";
 inline constexpr const char* centerline = "centerline.vtp";
 inline constexpr const char* field = "field.vti";
+inline constexpr const char* field_vdb = "field.vdb";
 inline constexpr const char* mesh = "mesh.vtu";
 inline constexpr const char* fibers = "fibers.vtu";
 inline constexpr const char* fiber_lines = "fibers.vtp";
@@ -41,6 +43,7 @@ TriangleSurface load_ligament(const BuildConfig& config,
 /// A bone surface if the config names one.
 std::optional<TriangleSurface> load_bone(const std::filesystem::path& file);
 
+/// The voxel images, read from the stages' .vdb files (sparse; the .vti files are for ParaView).
 Mask load_mask(const std::filesystem::path& dir);
 ScalarGrid load_distance(const std::filesystem::path& dir);
 ScalarGrid load_field(const std::filesystem::path& dir);
@@ -54,8 +57,15 @@ struct StoredAttachments {
 };
 StoredAttachments load_attachments(const std::filesystem::path& dir);
 
-/// Grid geometry for summary.json.
-nlohmann::json grid_json(const Mask& mask);
+/// Grid geometry and storage for summary.json.
+template <class T> nlohmann::json grid_json(const Grid<T>& grid)
+{
+  return {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
+          {"spacing_mm", grid.spacing},
+          {"voxels", grid.voxel_count()},
+          {"stored_voxels", grid.brick_count() * Grid<T>::kBrickVoxels},
+          {"stored_mib", static_cast<double>(grid.memory_bytes()) / (1024.0 * 1024.0)}};
+}
 
 /// The stages' run functions (see stage_list.cpp for the graph).
 nlohmann::json run_attachments(const BuildConfig& config, const std::filesystem::path& dir);

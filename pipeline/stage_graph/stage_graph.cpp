@@ -17,8 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize).
-constexpr const char* kAlgorithmVersion = "ligsim-build-2";
+/// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize;
+/// 3: sparse grids passed between the stages as .vdb files).
+constexpr const char* kAlgorithmVersion = "ligsim-build-3";
 
 const Stage& find_stage(const std::string& name)
 {

@@ -4,22 +4,14 @@
 #include "common/progress.hpp"
 #include "stages/geometry/interpolate.hpp"
 
-#include <boost/graph/compressed_sparse_row_graph.hpp>
-#include <boost/graph/dijkstra_shortest_paths.hpp>
-#include <boost/property_map/function_property_map.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 namespace ligsim::centerline {
 
 namespace {
-
-using VertexIndex = std::uint32_t;
-using Graph =
-    boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
-                                       boost::no_property, VertexIndex, VertexIndex>;
 
 /// Distances below this fraction of a voxel are clamped, so 1/d^2 stays finite on the surface.
 constexpr double kMinDistanceVoxels = 0.1;
@@ -44,154 +36,139 @@ struct CostModel {
 
 CostModel cost_model(const ScalarGrid& distance, double alpha)
 {
-  const float d_max = *std::max_element(distance.values.begin(), distance.values.end());
+  float d_max = distance.background();
+  distance.for_each_stored([&](const Eigen::Vector3i&, float d) { d_max = std::max(d_max, d); });
   if (!(d_max > 0.0f))
     fail("the distance image has no inside voxel");
   return {alpha, d_max, kMinDistanceVoxels * distance.spacing};
 }
 
 /// The inside voxel whose centre is nearest `p`: searched in growing cubes around p's voxel
-/// (points on or near the surface find one within a few voxels), else over the whole image.
-std::size_t nearest_inside(const Mask& mask, const Eigen::Vector3d& p)
+/// (points on or near the surface find one within a few voxels), else over all inside voxels.
+Eigen::Vector3i nearest_inside(const Mask& mask, const Eigen::Vector3d& p)
 {
-  std::size_t best = mask.values.size();
+  Eigen::Vector3i best(-1, -1, -1);
   double best_d = std::numeric_limits<double>::infinity();
-  auto consider = [&](std::size_t v) {
-    if (!mask.values[v])
-      return;
-    const double d = (mask.point(v) - p).squaredNorm();
+  auto consider = [&](const Eigen::Vector3i& v) {
+    const double d = (mask.point_of(v) - p).squaredNorm();
     if (d < best_d) {
       best_d = d;
       best = v;
     }
   };
   const Eigen::Vector3i c = mask.voxel_coordinates(p).array().round().cast<int>();
-  for (int r = 1; r <= 4 && best == mask.values.size(); ++r) {
+  for (int r = 1; r <= 4 && best.x() < 0; ++r) {
     // A voxel found within radius r may still lose to one in radius r + 1: search one more.
     for (int rr = r; rr <= r + 1; ++rr)
       for (int k = c.z() - rr; k <= c.z() + rr; ++k)
         for (int j = c.y() - rr; j <= c.y() + rr; ++j)
           for (int i = c.x() - rr; i <= c.x() + rr; ++i)
-            if (mask.contains(i, j, k))
-              consider(mask.index(i, j, k));
+            if (mask.contains(i, j, k) && mask(i, j, k))
+              consider({i, j, k});
   }
-  if (best == mask.values.size())
-    for (std::size_t v = 0; v < mask.values.size(); ++v)
-      consider(v);
-  if (best == mask.values.size())
+  if (best.x() < 0)
+    mask.for_each_stored([&](const Eigen::Vector3i& v, std::uint8_t inside) {
+      if (inside)
+        consider(v);
+    });
+  if (best.x() < 0)
     fail("the voxel image has no inside voxel");
   return best;
 }
 
+/// The inside voxels nearest each point, as linear indices, sorted, without repeats.
 std::vector<std::size_t> nearest_inside_voxels(const Mask& mask, const Points& points)
 {
   std::vector<std::size_t> voxels;
-  for (Eigen::Index i = 0; i < points.rows(); ++i)
-    voxels.push_back(nearest_inside(mask, points.row(i).transpose()));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3i v = nearest_inside(mask, points.row(i).transpose());
+    voxels.push_back(mask.index(v.x(), v.y(), v.z()));
+  }
   std::sort(voxels.begin(), voxels.end());
   voxels.erase(std::unique(voxels.begin(), voxels.end()), voxels.end());
   return voxels;
 }
 
-/// Dijkstra's result from one source: predecessor and cost per graph node.
+/// Marks a voxel Dijkstra has not reached.
+constexpr std::uint8_t kNoStep = 255;
+
+/// Dijkstra's result from one source over the inside voxels, stored sparsely on the mask's
+/// bricks: the path cost and the step back towards the source (an index into
+/// neighbourhood_26()), 5 bytes per stored voxel.
 struct ShortestPaths {
-  VertexIndex source;
-  std::vector<VertexIndex> predecessor;
-  std::vector<float> cost;
-  bool reaches(VertexIndex node) const { return node == source || predecessor[node] != node; }
+  Eigen::Vector3i source;
+  ScalarGrid cost;
+  Grid<std::uint8_t> step_back;
+  bool reaches(const Eigen::Vector3i& v) const { return v == source || step_back(v) != kNoStep; }
 };
 
-/// The inside voxels as a graph with the 26-neighbourhood and eq. 25's step costs.
-class VoxelGraph {
-public:
-  VoxelGraph(const Mask& mask, const ScalarGrid& distance)
-      : m_mask(mask)
-      , m_distance(distance)
-      , m_node_of(mask.values.size(), std::numeric_limits<VertexIndex>::max())
-  {
-    for (std::size_t v = 0; v < mask.values.size(); ++v)
-      if (mask.values[v]) {
-        m_node_of[v] = static_cast<VertexIndex>(m_voxel_of.size());
-        m_voxel_of.push_back(v);
-      }
-    // Only the topology is stored (4 bytes an edge once built); step costs are computed when
-    // Dijkstra asks, from the two voxels' distances.
-    std::vector<VertexIndex> sources, targets;
-    sources.reserve(m_voxel_of.size() * 26);
-    targets.reserve(m_voxel_of.size() * 26);
-    for (std::size_t node = 0; node < m_voxel_of.size(); ++node) {
-      const Eigen::Vector3i a = mask.ijk(m_voxel_of[node]);
-      for (const Eigen::Vector3i& offset : neighbourhood_26()) {
-        const Eigen::Vector3i b = a + offset;
-        if (!mask.contains(b.x(), b.y(), b.z()) || !mask(b.x(), b.y(), b.z()))
-          continue;
-        sources.push_back(static_cast<VertexIndex>(node));
-        targets.push_back(m_node_of[mask.index(b.x(), b.y(), b.z())]);
+/// Minimal-cost paths over the inside voxels of `mask` (26-neighbourhood, eq. 25's step costs)
+/// from `source`: Dijkstra with a binary heap of (cost, voxel) entries; entries made stale by a
+/// cheaper path are skipped when they come up. No graph is stored: a voxel's neighbours are
+/// looked up in the mask.
+ShortestPaths shortest_paths(const Mask& mask, const ScalarGrid& distance,
+                             const Eigen::Vector3i& source, const CostModel& model)
+{
+  ShortestPaths result{source,
+                       ScalarGrid::with_bricks_of(mask, std::numeric_limits<float>::infinity()),
+                       Grid<std::uint8_t>::with_bricks_of(mask, kNoStep)};
+  const std::vector<Eigen::Vector3i>& offsets = neighbourhood_26();
+  std::vector<double> lengths;
+  for (const Eigen::Vector3i& o : offsets)
+    lengths.push_back(mask.spacing * o.cast<double>().norm());
+  using Entry = std::pair<float, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  *result.cost.find(source.x(), source.y(), source.z()) = 0.0f;
+  queue.push({0.0f, mask.index(source.x(), source.y(), source.z())});
+  while (!queue.empty()) {
+    const auto [cost, index] = queue.top();
+    queue.pop();
+    const Eigen::Vector3i a = mask.ijk(index);
+    if (cost > result.cost(a))
+      continue; // stale
+    const double d_a = distance(a);
+    for (std::size_t n = 0; n < offsets.size(); ++n) {
+      const Eigen::Vector3i b = a + offsets[n];
+      if (!mask.contains(b) || !mask(b))
+        continue;
+      const float through_a = cost + static_cast<float>(model.step(lengths[n], d_a, distance(b)));
+      float* cost_b = result.cost.find(b.x(), b.y(), b.z());
+      if (through_a < *cost_b) {
+        *cost_b = through_a;
+        *result.step_back.find(b.x(), b.y(), b.z()) = static_cast<std::uint8_t>(n);
+        queue.push({through_a, mask.index(b.x(), b.y(), b.z())});
       }
     }
-    m_graph = Graph(boost::construct_inplace_from_sources_and_targets, sources, targets,
-                    static_cast<VertexIndex>(m_voxel_of.size()));
   }
+  return result;
+}
 
-  VertexIndex node(std::size_t voxel) const { return m_node_of[voxel]; }
-
-  /// Dijkstra from `source_voxel` with the step costs of `model`.
-  ShortestPaths shortest_paths(std::size_t source_voxel, const CostModel& model) const
-  {
-    ShortestPaths result{node(source_voxel), std::vector<VertexIndex>(m_voxel_of.size()),
-                         std::vector<float>(m_voxel_of.size())};
-    const auto index = boost::get(boost::vertex_index, m_graph);
-    boost::dijkstra_shortest_paths(
-        m_graph, result.source,
-        boost::predecessor_map(boost::make_iterator_property_map(result.predecessor.begin(), index))
-            .distance_map(boost::make_iterator_property_map(result.cost.begin(), index))
-            .weight_map(boost::make_function_property_map<Graph::edge_descriptor, float>(
-                [this, &model](const Graph::edge_descriptor& edge) {
-                  return step_cost(edge, model);
-                })));
-    return result;
-  }
-
-  /// Among `voxels`, the reachable one of largest path cost.
-  std::size_t farthest(const ShortestPaths& paths, const std::vector<std::size_t>& voxels) const
-  {
-    std::size_t best = voxels.front();
-    float best_cost = -1.0f;
-    for (std::size_t voxel : voxels)
-      if (paths.reaches(node(voxel)) && paths.cost[node(voxel)] > best_cost) {
-        best_cost = paths.cost[node(voxel)];
-        best = voxel;
-      }
-    return best;
-  }
-
-  /// The voxels from `voxel` back to the source of `paths`, both included.
-  std::vector<std::size_t> path_to_source(const ShortestPaths& paths, std::size_t voxel) const
-  {
-    std::vector<std::size_t> result;
-    for (VertexIndex n = node(voxel);; n = paths.predecessor[n]) {
-      result.push_back(m_voxel_of[n]);
-      if (n == paths.source)
-        break;
+/// Among `voxels` (linear indices), the reachable one of largest path cost.
+Eigen::Vector3i farthest(const Mask& mask, const ShortestPaths& paths,
+                         const std::vector<std::size_t>& voxels)
+{
+  Eigen::Vector3i best = mask.ijk(voxels.front());
+  float best_cost = -1.0f;
+  for (std::size_t index : voxels) {
+    const Eigen::Vector3i v = mask.ijk(index);
+    if (paths.reaches(v) && paths.cost(v) > best_cost) {
+      best_cost = paths.cost(v);
+      best = v;
     }
-    return result;
   }
+  return best;
+}
 
-private:
-  float step_cost(const Graph::edge_descriptor& edge, const CostModel& model) const
-  {
-    const std::size_t a = m_voxel_of[boost::source(edge, m_graph)];
-    const std::size_t b = m_voxel_of[boost::target(edge, m_graph)];
-    const double length = m_mask.spacing * (m_mask.ijk(a) - m_mask.ijk(b)).cast<double>().norm();
-    return static_cast<float>(model.step(length, m_distance.values[a], m_distance.values[b]));
+/// The voxels from `voxel` back to the source of `paths`, both included.
+std::vector<Eigen::Vector3i> path_to_source(const ShortestPaths& paths, Eigen::Vector3i voxel)
+{
+  std::vector<Eigen::Vector3i> result{voxel};
+  while (voxel != paths.source) {
+    voxel -= neighbourhood_26()[paths.step_back(voxel)];
+    result.push_back(voxel);
   }
-
-  const Mask& m_mask;
-  const ScalarGrid& m_distance;
-  std::vector<VertexIndex> m_node_of;
-  std::vector<std::size_t> m_voxel_of;
-  Graph m_graph;
-};
+  return result;
+}
 
 double segment_cost(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const ScalarGrid& distance,
                     const CostModel& model, bool* leaves_shape = nullptr)
@@ -397,51 +374,57 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
   if (start_area.rows() == 0 || end_area.rows() == 0)
     fail("the centerline needs two non-empty attachment areas");
   const CostModel model = cost_model(distance, parameters.alpha);
-  const VoxelGraph graph(mask, distance);
 
-  std::size_t start_voxel = nearest_inside(mask, start_area.colwise().mean().transpose());
-  std::size_t end_voxel = nearest_inside(mask, end_area.colwise().mean().transpose());
+  Eigen::Vector3i start_voxel = nearest_inside(mask, start_area.colwise().mean().transpose());
+  Eigen::Vector3i end_voxel = nearest_inside(mask, end_area.colwise().mean().transpose());
   if (start_voxel == end_voxel)
     fail("the two attachment areas map to the same voxel: no centerline between them");
-  const ShortestPaths from_start = graph.shortest_paths(start_voxel, model);
-  if (!from_start.reaches(graph.node(end_voxel)))
+  Progress progress("centerline (Dijkstra)", parameters.span == Span::attachments ? 4 : 1);
+  ShortestPaths from_start = shortest_paths(mask, distance, start_voxel, model);
+  progress.advance();
+  if (!from_start.reaches(end_voxel)) {
+    const Eigen::Vector3d a = mask.point_of(start_voxel), b = mask.point_of(end_voxel);
     fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
          "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of "
          "the "
          "voxel image (try a smaller voxel spacing)",
-         mask.point(start_voxel).x(), mask.point(start_voxel).y(), mask.point(start_voxel).z(),
-         mask.point(end_voxel).x(), mask.point(end_voxel).y(), mask.point(end_voxel).z());
+         a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
+  }
 
   // Voxel path from the start to the end, in order.
-  std::vector<std::size_t> voxels;
+  std::vector<Eigen::Vector3i> voxels;
   float path_cost = 0.0f;
   if (parameters.span == Span::attachments) {
     // Through the whole areas: the end is the end area's voxel farthest along the shape (path
     // length inside it, alpha = 0: the medial term would favour voxels at the surface) from the
     // start; the start is the start area's voxel farthest from that end.
+    from_start = ShortestPaths{}; // one result in memory at a time
     const CostModel length_only{0.0, model.d_max, model.d_min};
-    end_voxel = graph.farthest(graph.shortest_paths(start_voxel, length_only),
-                               nearest_inside_voxels(mask, end_area));
-    start_voxel = graph.farthest(graph.shortest_paths(end_voxel, length_only),
-                                 nearest_inside_voxels(mask, start_area));
-    const ShortestPaths from_end = graph.shortest_paths(end_voxel, model);
-    voxels = graph.path_to_source(from_end, start_voxel);
-    path_cost = from_end.cost[graph.node(start_voxel)];
+    end_voxel = farthest(mask, shortest_paths(mask, distance, start_voxel, length_only),
+                         nearest_inside_voxels(mask, end_area));
+    progress.advance();
+    start_voxel = farthest(mask, shortest_paths(mask, distance, end_voxel, length_only),
+                           nearest_inside_voxels(mask, start_area));
+    progress.advance();
+    const ShortestPaths from_end = shortest_paths(mask, distance, end_voxel, model);
+    progress.advance();
+    voxels = path_to_source(from_end, start_voxel);
+    path_cost = from_end.cost(start_voxel);
   } else {
-    voxels = graph.path_to_source(from_start, end_voxel);
+    voxels = path_to_source(from_start, end_voxel);
     std::reverse(voxels.begin(), voxels.end());
-    path_cost = from_start.cost[graph.node(end_voxel)];
+    path_cost = from_start.cost(end_voxel);
   }
+  progress.finish();
 
   Centerline result;
-  result.start_voxel = mask.ijk(start_voxel);
-  result.end_voxel = mask.ijk(end_voxel);
+  result.start_voxel = start_voxel;
+  result.end_voxel = end_voxel;
   result.path_cost = path_cost;
+  result.voxel_path = voxels;
   std::vector<Eigen::Vector3d> path;
-  for (std::size_t voxel : voxels) {
-    result.voxel_path.push_back(mask.ijk(voxel));
-    path.push_back(mask.point(voxel));
-  }
+  for (const Eigen::Vector3i& voxel : voxels)
+    path.push_back(mask.point_of(voxel));
 
   if (parameters.refine && path.size() > 2)
     path = pull_string(path, distance, model);

@@ -52,13 +52,13 @@ struct Centerline {
   double length_mm = 0.0;
 };
 
-/// Minimal-cost path over the inside voxels of `mask` (26-neighbourhood, Boost.Graph Dijkstra)
-/// between the attachment areas `start_area` (A1) and `end_area` (A2), #points x 3, mm, chosen
-/// by `parameters.span`. A step from voxel a to b
-/// costs |dP| (alpha (1/dn_a^2 + 1/dn_b^2)/2 + (1 - alpha)) with dn = d / d_max: the distance
-/// is scaled by the largest inside distance, so the cost does not depend on the unit or the
-/// size of the shape, and alpha means the same on a 3 mm and a 30 mm thick structure.
-/// Throws InputError if the two voxels are not connected inside the mask.
+/// Minimal-cost path over the inside voxels of `mask` (26-neighbourhood, Dijkstra on the sparse
+/// grid) between the attachment areas `start_area` (A1) and `end_area` (A2), #points x 3, mm,
+/// chosen by `parameters.span`. A step from voxel a to b costs |dP| (alpha (1/dn_a^2 + 1/dn_b^2)/2
+/// + (1 - alpha)) with dn = d / d_max: the distance is scaled by the largest inside distance, so
+/// the cost does not depend on the unit or the size of the shape, and alpha means the same on a 3
+/// mm and a 30 mm thick structure. Throws InputError if the two voxels are not connected inside the
+/// mask.
 Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& start_area,
                    const Points& end_area, const Parameters& parameters);
 

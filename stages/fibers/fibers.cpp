@@ -13,45 +13,38 @@ namespace {
 
 constexpr double kDegreesPerRadian = 57.29577951308232;
 
-/// grad D at the inside voxel centres: central differences where both neighbours are inside,
-/// one-sided where one is, zero outside. Differences never reach across the surface, so the
-/// boundary value does not bend the gradient where the shape ends (the attachment faces).
-Grid<Eigen::Vector3f> gradient_of(const ScalarGrid& field, const Mask& mask)
-{
-  auto gradient = Grid<Eigen::Vector3f>::like(field, Eigen::Vector3f::Zero());
-  auto inside = [&](int i, int j, int k) { return mask.contains(i, j, k) && mask(i, j, k); };
-  for (int k = 0; k < field.dims.z(); ++k)
-    for (int j = 0; j < field.dims.y(); ++j)
-      for (int i = 0; i < field.dims.x(); ++i) {
-        if (!mask(i, j, k))
-          continue;
-        Eigen::Vector3f g = Eigen::Vector3f::Zero();
-        for (int a = 0; a < 3; ++a) {
-          Eigen::Vector3i lo(i, j, k), hi(i, j, k);
-          lo[a] -= 1;
-          hi[a] += 1;
-          const bool has_lo = inside(lo.x(), lo.y(), lo.z());
-          const bool has_hi = inside(hi.x(), hi.y(), hi.z());
-          if (!has_lo)
-            lo[a] += 1;
-          if (!has_hi)
-            hi[a] -= 1;
-          const int span = hi[a] - lo[a];
-          if (span > 0)
-            g[a] = (field(hi.x(), hi.y(), hi.z()) - field(lo.x(), lo.y(), lo.z())) /
-                   static_cast<float>(span * field.spacing);
-        }
-        gradient(i, j, k) = g;
-      }
-  return gradient;
-}
-
 } // namespace
 
-FiberField::FiberField(const Polyline& centerline, const ScalarGrid& field, const Mask& mask)
+FiberField::FiberField(const Polyline& centerline, ScalarGrid field, Mask mask)
     : m_centerline(centerline)
-    , m_gradient(gradient_of(field, mask))
+    , m_field(std::move(field))
+    , m_mask(std::move(mask))
 {
+}
+
+/// Central differences where both neighbours are inside, one-sided where one is, zero outside.
+/// Differences never reach across the surface, so the boundary value does not bend the
+/// gradient where the shape ends (the attachment faces).
+Eigen::Vector3d FiberField::gradient_at_voxel(const Eigen::Vector3i& v) const
+{
+  auto inside = [&](const Eigen::Vector3i& u) { return m_mask.contains(u) && m_mask(u); };
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  if (!inside(v))
+    return g;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3i lo = v, hi = v;
+    lo[a] -= 1;
+    hi[a] += 1;
+    if (!inside(lo))
+      lo[a] += 1;
+    if (!inside(hi))
+      hi[a] -= 1;
+    const int span = hi[a] - lo[a];
+    if (span > 0)
+      g[a] = static_cast<double>((m_field(hi) - m_field(lo)) /
+                                 static_cast<float>(span * m_field.spacing));
+  }
+  return g;
 }
 
 Eigen::Vector3d FiberField::tangent_at(const Eigen::Vector3d& x) const
@@ -62,7 +55,9 @@ Eigen::Vector3d FiberField::tangent_at(const Eigen::Vector3d& x) const
 FiberField::Sample FiberField::at(const Eigen::Vector3d& x) const
 {
   const Eigen::Vector3d tangent = tangent_at(x);
-  const Eigen::Vector3d gradient = interpolate(m_gradient, x);
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  visit_trilinear_voxels(
+      m_mask, x, [&](const Eigen::Vector3i& v, double w) { gradient += w * gradient_at_voxel(v); });
   const double g2 = gradient.squaredNorm();
   if (g2 > 0.0) {
     const Eigen::Vector3d projected = tangent - (tangent.dot(gradient) / g2) * gradient;

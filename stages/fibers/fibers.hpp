@@ -17,8 +17,9 @@ namespace ligsim::fibers {
 class FiberField {
 public:
   /// `field` is D on the inside voxels of `mask`; its gradient is taken by finite differences
-  /// between inside voxels and interpolated trilinearly.
-  FiberField(const Polyline& centerline, const ScalarGrid& field, const Mask& mask);
+  /// between inside voxels (when asked for, not stored: the grids stay sparse) and interpolated
+  /// trilinearly.
+  FiberField(const Polyline& centerline, ScalarGrid field, Mask mask);
 
   struct Sample {
     Eigen::Vector3d direction; ///< unit fiber direction
@@ -31,8 +32,12 @@ public:
   Eigen::Vector3d tangent_at(const Eigen::Vector3d& x) const;
 
 private:
+  /// grad D at an inside voxel centre, 1/mm; zero outside.
+  Eigen::Vector3d gradient_at_voxel(const Eigen::Vector3i& v) const;
+
   const Polyline& m_centerline;
-  Grid<Eigen::Vector3f> m_gradient;
+  ScalarGrid m_field;
+  Mask m_mask;
 };
 
 struct Parameters {

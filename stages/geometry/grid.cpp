@@ -2,6 +2,14 @@
 
 namespace ligsim {
 
+std::size_t inside_count(const Mask& mask)
+{
+  std::size_t count = 0;
+  mask.for_each_stored(
+      [&](const Eigen::Vector3i&, std::uint8_t inside) { count += inside ? 1 : 0; });
+  return count;
+}
+
 const std::vector<Eigen::Vector3i>& neighbourhood_26()
 {
   static const std::vector<Eigen::Vector3i> offsets = [] {

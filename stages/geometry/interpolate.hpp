@@ -8,10 +8,10 @@
 
 namespace ligsim {
 
-/// Calls visit(value, weight) for the (up to eight) voxel centres around `p` (mm) with their
+/// Calls visit(voxel, weight) for the (up to eight) voxel centres around `p` (mm) with their
 /// trilinear weights; points outside the grid are clamped to its border.
 template <class T, class Visit>
-void visit_trilinear(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visit)
+void visit_trilinear_voxels(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visit)
 {
   const Eigen::Vector3d v = grid.voxel_coordinates(p);
   int base[3];
@@ -26,10 +26,19 @@ void visit_trilinear(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visi
     const double w =
         (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
     if (w != 0.0)
-      visit(grid(std::min(base[0] + di, grid.dims[0] - 1), std::min(base[1] + dj, grid.dims[1] - 1),
-                 std::min(base[2] + dk, grid.dims[2] - 1)),
+      visit(Eigen::Vector3i(std::min(base[0] + di, grid.dims[0] - 1),
+                            std::min(base[1] + dj, grid.dims[1] - 1),
+                            std::min(base[2] + dk, grid.dims[2] - 1)),
             w);
   }
+}
+
+/// Calls visit(value, weight) for the (up to eight) voxel centres around `p` (mm).
+template <class T, class Visit>
+void visit_trilinear(const Grid<T>& grid, const Eigen::Vector3d& p, Visit&& visit)
+{
+  visit_trilinear_voxels(grid, p,
+                         [&](const Eigen::Vector3i& voxel, double w) { visit(grid(voxel), w); });
 }
 
 /// Scalar value at `p` (mm).
@@ -38,15 +47,6 @@ template <class T> double interpolate(const Grid<T>& grid, const Eigen::Vector3d
   double result = 0.0;
   visit_trilinear(grid, p,
                   [&](const T& value, double w) { result += w * static_cast<double>(value); });
-  return result;
-}
-
-/// Vector value at `p` (mm).
-inline Eigen::Vector3d interpolate(const Grid<Eigen::Vector3f>& grid, const Eigen::Vector3d& p)
-{
-  Eigen::Vector3d result = Eigen::Vector3d::Zero();
-  visit_trilinear(
-      grid, p, [&](const Eigen::Vector3f& value, double w) { result += w * value.cast<double>(); });
   return result;
 }
 

@@ -7,9 +7,7 @@
 #include <vtkDataArray.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
 #include <vtkIdList.h>
-#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -42,14 +40,6 @@ Points from_vtk_points(vtkPoints* points)
   }
   return V;
 }
-
-template <class T> struct VtkArrayFor;
-template <> struct VtkArrayFor<float> {
-  using type = vtkFloatArray;
-};
-template <> struct VtkArrayFor<std::uint8_t> {
-  using type = vtkUnsignedCharArray;
-};
 
 } // namespace
 
@@ -101,47 +91,6 @@ Points points_of(vtkPolyData* polydata)
 {
   return from_vtk_points(polydata->GetPoints());
 }
-
-template <class T>
-vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(grid.dims.x(), grid.dims.y(), grid.dims.z());
-  image->SetOrigin(grid.origin.x(), grid.origin.y(), grid.origin.z());
-  image->SetSpacing(grid.spacing, grid.spacing, grid.spacing);
-  auto array = vtkSmartPointer<typename VtkArrayFor<T>::type>::New();
-  array->SetName(name.c_str());
-  array->SetNumberOfValues(static_cast<vtkIdType>(grid.values.size()));
-  for (std::size_t i = 0; i < grid.values.size(); ++i)
-    array->SetValue(static_cast<vtkIdType>(i), grid.values[i]);
-  image->GetPointData()->AddArray(array);
-  image->GetPointData()->SetActiveScalars(name.c_str());
-  return image;
-}
-
-template <class T> Grid<T> from_image(vtkImageData* image, const std::string& name)
-{
-  vtkDataArray* array = image->GetPointData()->GetArray(name.c_str());
-  if (array == nullptr || array->GetNumberOfComponents() != 1)
-    fail("image has no scalar array '{}'", name);
-  const double* spacing = image->GetSpacing();
-  if (std::abs(spacing[0] - spacing[1]) > 1e-9 * spacing[0] ||
-      std::abs(spacing[0] - spacing[2]) > 1e-9 * spacing[0])
-    fail("image '{}' has anisotropic spacing {} x {} x {}", name, spacing[0], spacing[1],
-         spacing[2]);
-  int dims[3];
-  image->GetDimensions(dims);
-  const double* origin = image->GetOrigin();
-  Grid<T> grid({dims[0], dims[1], dims[2]}, {origin[0], origin[1], origin[2]}, spacing[0]);
-  for (std::size_t i = 0; i < grid.values.size(); ++i)
-    grid.values[i] = static_cast<T>(array->GetTuple1(static_cast<vtkIdType>(i)));
-  return grid;
-}
-
-template vtkSmartPointer<vtkImageData> to_image(const Grid<float>&, const std::string&);
-template vtkSmartPointer<vtkImageData> to_image(const Grid<std::uint8_t>&, const std::string&);
-template Grid<float> from_image(vtkImageData*, const std::string&);
-template Grid<std::uint8_t> from_image(vtkImageData*, const std::string&);
 
 vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh)
 {

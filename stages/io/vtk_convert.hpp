@@ -2,7 +2,6 @@
 /// @brief Conversions between the stages' in-memory data and VTK data sets.
 
 #include "common/mesh.hpp"
-#include "stages/geometry/grid.hpp"
 
 #include <vtkSmartPointer.h>
 
@@ -12,7 +11,6 @@
 #include <vector>
 
 class vtkDataSetAttributes;
-class vtkImageData;
 class vtkPolyData;
 class vtkUnstructuredGrid;
 
@@ -25,12 +23,6 @@ TriangleSurface from_polydata(vtkPolyData* polydata);
 /// A polyline (one line cell through all points, in order).
 vtkSmartPointer<vtkPolyData> polyline_to_polydata(const Points& points);
 Points points_of(vtkPolyData* polydata);
-
-/// A grid as image data with one point-data array named `name`.
-template <class T>
-vtkSmartPointer<vtkImageData> to_image(const Grid<T>& grid, const std::string& name);
-/// The array `name` of an image; throws InputError if it is missing or the image is not isotropic.
-template <class T> Grid<T> from_image(vtkImageData* image, const std::string& name);
 
 vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh);
 /// Tetrahedra only; throws InputError if another cell type is present.

@@ -1,16 +1,17 @@
 #include "stages/voxelize/level_set.hpp"
 
-#include "common/atomic_file.hpp"
-#include "common/vdb_file_id.hpp"
+#include "common/error.hpp"
+#include "stages/geometry/grid_vdb_detail.hpp"
 
-#include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
 
-#include <mutex>
+#include <limits>
 
 namespace ligsim::vdb {
 
 namespace {
+
+constexpr const char* kGridName = "surface";
 
 /// The surface in OpenVDB's index space (voxel centres at integer coordinates).
 class IndexSpaceMesh {
@@ -40,43 +41,81 @@ private:
   double m_spacing;
 };
 
-void initialize_once()
-{
-  static std::once_flag flag;
-  std::call_once(flag, [] { openvdb::initialize(); });
-}
-
 } // namespace
 
-ScalarGrid level_set(const TriangleSurface& surface, const LevelSetRequest& request,
-                     const std::filesystem::path& vdb_file)
+struct LevelSet::Impl {
+  openvdb::FloatGrid::Ptr grid;
+  Eigen::Vector3i dims;
+};
+
+LevelSet::LevelSet(std::shared_ptr<const Impl> impl)
+    : m_impl(std::move(impl))
 {
-  initialize_once();
-  auto transform = openvdb::math::Transform::createLinearTransform(request.spacing_mm);
-  transform->postTranslate(
-      openvdb::Vec3d(request.origin.x(), request.origin.y(), request.origin.z()));
+}
+
+LevelSet LevelSet::of_surface(const TriangleSurface& surface, const LevelSetRequest& request)
+{
+  detail::initialize();
+  const auto transform = detail::transform_of(request.origin, request.spacing_mm);
   const IndexSpaceMesh mesh(surface, request.origin, request.spacing_mm);
-  // Exact distances to the triangles in the band: no renormalization (which would smooth them).
-  const openvdb::FloatGrid::Ptr grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+  // Interior filled (distances all the way in); no renormalization, which would smooth the
+  // distances to the triangles.
+  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
       mesh, *transform, static_cast<float>(request.exterior_band_voxels),
-      static_cast<float>(request.interior_band_voxels), openvdb::tools::DISABLE_RENORMALIZATION);
+      std::numeric_limits<float>::max(), openvdb::tools::DISABLE_RENORMALIZATION);
+  // meshToVolume gives the grid a transform whose scale reads back rounded far from the
+  // origin; the index space is the same, so set ours.
+  grid->setTransform(transform);
+  grid->setName(kGridName);
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  detail::set_dims(*grid, request.dims);
+  return LevelSet(std::make_shared<const Impl>(Impl{grid, request.dims}));
+}
 
-  ScalarGrid sampled(request.dims, request.origin, request.spacing_mm, 0.0f);
-  const auto accessor = grid->getConstAccessor();
-  for (int k = 0; k < request.dims.z(); ++k)
-    for (int j = 0; j < request.dims.y(); ++j)
-      for (int i = 0; i < request.dims.x(); ++i)
-        sampled(i, j, k) = accessor.getValue(openvdb::Coord(i, j, k));
+LevelSet LevelSet::read(const std::filesystem::path& file)
+{
+  auto grid = detail::read_float_grid(file, kGridName);
+  const Eigen::Vector3i dims = detail::dims_of(*grid, file);
+  return LevelSet(std::make_shared<const Impl>(Impl{grid, dims}));
+}
 
-  if (!vdb_file.empty()) {
-    grid->setName("surface");
-    grid->setGridClass(openvdb::GRID_LEVEL_SET);
-    AtomicFile file(vdb_file);
-    openvdb::io::File(file.temp_path().string()).write({grid});
-    make_vdb_file_id_reproducible(file.temp_path());
-    file.commit();
-  }
-  return sampled;
+void LevelSet::write(const std::filesystem::path& file) const
+{
+  detail::write_grids(file, {m_impl->grid});
+}
+
+Eigen::Vector3i LevelSet::dims() const
+{
+  return m_impl->dims;
+}
+
+double LevelSet::spacing_mm() const
+{
+  return detail::spacing_of(m_impl->grid->transform());
+}
+
+Mask LevelSet::inside() const
+{
+  return detail::from_vdb(*m_impl->grid, m_impl->dims, std::uint8_t{0},
+                          [](float v) { return static_cast<std::uint8_t>(v < 0.0f ? 1 : 0); });
+}
+
+ScalarGrid LevelSet::signed_distance(double outside_limit_mm) const
+{
+  const auto limit = static_cast<float>(outside_limit_mm);
+  return detail::from_vdb(*m_impl->grid, m_impl->dims, -limit,
+                          [limit](float v) { return v < limit ? -v : -limit; });
+}
+
+double LevelSet::exterior_band_voxels() const
+{
+  // meshToVolume sets the background (the value beyond the band) to the band's width, mm.
+  return static_cast<double>(m_impl->grid->background()) / spacing_mm();
+}
+
+std::size_t LevelSet::active_voxels() const
+{
+  return static_cast<std::size_t>(m_impl->grid->activeVoxelCount());
 }
 
 } // namespace ligsim::vdb

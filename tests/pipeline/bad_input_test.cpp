@@ -133,9 +133,9 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
              std::to_string(o + f[2]) + "\n";
   }
   const fs::path file = write_text("ligsim_two_boxes.obj", obj);
-  expect_clean_failure("centerline --surface " + file.string(), fresh_folder("unconnected"),
-                       "cannot be connected",
-                       {"attachments.vtp", "mask.vti", "surface.vdb", "distance.vti"});
+  expect_clean_failure(
+      "centerline --surface " + file.string(), fresh_folder("unconnected"), "cannot be connected",
+      {"attachments.vtp", "mask.vti", "surface.vdb", "distance.vti", "distance.vdb"});
 }
 
 TEST(BuildBadInput, ConfigWithUnknownKey)

@@ -27,8 +27,9 @@ inline VoxelisedShape voxelise(synthetic::Shape shape, double spacing)
   SurfaceQuery query(shape.surface);
   voxelize::Parameters parameters;
   parameters.spacing_mm = spacing;
-  Mask mask = voxelize::voxelize(query.surface(), parameters);
-  ScalarGrid distance = distance::signed_distance(query, mask);
+  const vdb::LevelSet level_set = voxelize::level_set(query.surface(), parameters);
+  Mask mask = level_set.inside();
+  ScalarGrid distance = distance::signed_distance(level_set, query);
   return {std::move(shape), std::move(query), std::move(mask), std::move(distance)};
 }
 

@@ -87,8 +87,8 @@ TEST(Fibers, LieOnTheIsosurfacesOfTheField)
   const Chain c = run_chain(synthetic::torus_tube(20.0, 3.0, 120.0), 0.4, field::Method::geometric);
   const fibers::FiberField fiber_field(*c.polyline, c.field.values, c.v.mask);
   int checked = 0;
-  for (std::size_t i = 0; i < c.v.mask.values.size(); i += 3) {
-    if (!c.v.mask.values[i])
+  for (std::size_t i = 0; i < c.v.mask.voxel_count(); i += 3) {
+    if (!c.v.mask.at(i))
       continue;
     const auto s = fiber_field.at(c.v.mask.point(i) + Eigen::Vector3d(0.05, 0.1, 0.07));
     if (!s.projected)

@@ -21,11 +21,11 @@ TEST(Field, GeometricIsTheRelativeRadiusOnACylinder)
   const Polyline axis = test::axis_polyline(v.shape.axis);
   const auto field = field::diffusion_field(v.mask, axis, v.query, {});
   double worst = 0.0;
-  for (std::size_t i = 0; i < v.mask.values.size(); ++i) {
-    const float d = field.values.values[i];
+  for (std::size_t i = 0; i < v.mask.voxel_count(); ++i) {
+    const float d = field.values.at(i);
     ASSERT_GE(d, 0.0f);
     ASSERT_LE(d, 1.0f);
-    if (!v.mask.values[i]) {
+    if (!v.mask.at(i)) {
       EXPECT_EQ(d, 1.0f);
       continue;
     }
@@ -49,18 +49,18 @@ TEST(Field, LaplaceIsHarmonicBetweenLineAndBoundary)
   // Mid-length, D grows with the radius and stays in [0, 1]; like the 2-D solution
   // ln(r / r0) / ln(R / r0) it lies above the geometric r / R in between.
   std::vector<double> sum(11, 0.0), count(11, 0.0);
-  for (std::size_t i = 0; i < v.mask.values.size(); ++i) {
-    if (!v.mask.values[i])
+  for (std::size_t i = 0; i < v.mask.voxel_count(); ++i) {
+    if (!v.mask.at(i))
       continue;
     const Eigen::Vector3d p = v.mask.point(i);
     if (std::abs(p.z() - L / 2) > 5.0)
       continue;
     const double r = std::hypot(p.x(), p.y()) / R;
     const int bin = std::min(10, static_cast<int>(r * 10));
-    sum[bin] += field.values.values[i];
+    sum[bin] += field.values.at(i);
     count[bin] += 1;
-    EXPECT_GE(field.values.values[i], 0.0f);
-    EXPECT_LE(field.values.values[i], 1.0f);
+    EXPECT_GE(field.values.at(i), 0.0f);
+    EXPECT_LE(field.values.at(i), 1.0f);
   }
   for (int b = 1; b < 9; ++b) {
     ASSERT_GT(count[b], 0);

@@ -87,7 +87,7 @@ TEST(Interpolate, IsExactForLinearFunctions)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 4; ++i) {
         const Eigen::Vector3d p = grid.point(i, j, k);
-        grid(i, j, k) = static_cast<float>(2 * p.x() - p.y() + 0.5 * p.z());
+        grid.set(i, j, k, static_cast<float>(2 * p.x() - p.y() + 0.5 * p.z()));
       }
   const Eigen::Vector3d q(1.73, 3.1, 4.9);
   EXPECT_NEAR(interpolate(grid, q), 2 * q.x() - q.y() + 0.5 * q.z(), 1e-5);

@@ -1,5 +1,6 @@
 #include "common/error.hpp"
 #include "stages/geometry/surface_topology.hpp"
+#include "stages/voxelize/level_set.hpp"
 #include "tests/stages/shape_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -12,9 +13,7 @@ TEST(Voxelize, MaskVolumeMatchesTheSurfaceVolume)
        {synthetic::cylinder(3.0, 30.0), synthetic::torus_tube(), synthetic::ligament_band()}) {
     const double volume = signed_volume(shape.surface);
     const auto v = test::voxelise(std::move(shape), 0.3);
-    std::size_t inside = 0;
-    for (auto value : v.mask.values)
-      inside += value;
+    const std::size_t inside = inside_count(v.mask);
     const double voxel_volume = inside * std::pow(v.mask.spacing, 3);
     EXPECT_NEAR(voxel_volume, volume, 0.02 * volume);
     // The padding keeps the border outside.
@@ -33,8 +32,8 @@ TEST(Voxelize, AgreesWithPointInsideTestsOnARotatedShape)
   const auto v =
       test::voxelise(test::transformed(synthetic::torus_tube(), rotation, {1, 2, 3}), 0.5);
   int disagreements = 0;
-  for (std::size_t i = 0; i < v.mask.values.size(); i += 7)
-    if ((v.mask.values[i] != 0) != v.query.inside(v.mask.point(i)) &&
+  for (std::size_t i = 0; i < v.mask.voxel_count(); i += 7)
+    if ((v.mask.at(i) != 0) != v.query.inside(v.mask.point(i)) &&
         v.query.distance(v.mask.point(i)) > kSignUndecidedVoxels * v.mask.spacing)
       ++disagreements;
   EXPECT_EQ(disagreements, 0);
@@ -46,6 +45,22 @@ TEST(Voxelize, DefaultSpacingIsAnEighthOfTheThickness)
   const double spacing = voxelize::default_spacing(band.surface);
   EXPECT_GT(spacing, 2.0 / 8);
   EXPECT_LT(spacing, 3.5 / 8);
+}
+
+TEST(Voxelize, KeepsTheRequestedSpacingExactlyFarFromTheOrigin)
+{
+  // In the MCL's frame OpenVDB's meshToVolume gave its grid a transform whose scale read back
+  // as 0.0499999999999545 for 0.05, and the stages downstream inherited it.
+  const synthetic::Shape shape = test::transformed(
+      synthetic::cylinder(1.0, 2.0), Eigen::Matrix3d::Identity(), {578.1, 437.2, 449.3});
+  voxelize::Parameters parameters;
+  parameters.spacing_mm = 0.05;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "ligsim_voxelize_spacing.vdb";
+  const Mask mask = voxelize::voxelize(shape.surface, parameters, file);
+  EXPECT_EQ(mask.spacing, 0.05);
+  EXPECT_EQ(vdb::LevelSet::read(file).spacing_mm(), 0.05);
+  std::filesystem::remove(file);
 }
 
 TEST(Voxelize, RefusesAGridTooLargeForMemory)
@@ -78,7 +93,7 @@ TEST(Voxelize, SignIsNotFooledByDefectsThatBreakRayParity)
   const Mask mask = voxelize::voxelize(damaged, parameters);
   ASSERT_EQ(mask.dims, expected.dims);
   std::size_t disagreements = 0;
-  for (std::size_t v = 0; v < mask.values.size(); ++v)
-    disagreements += mask.values[v] != expected.values[v] ? 1 : 0;
+  for (std::size_t v = 0; v < mask.voxel_count(); ++v)
+    disagreements += mask.at(v) != expected.at(v) ? 1 : 0;
   EXPECT_EQ(disagreements, 0u);
 }
