@@ -4,16 +4,18 @@
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
+#include "stages/io/legacy_vtk_check.hpp"
+#include "stages/io/obj_reader.hpp"
+#include "stages/io/ply_check.hpp"
+#include "stages/io/stl_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 
 #include <vtkCleanPolyData.h>
 #include <vtkDataArray.h>
-#include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
-#include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkTriangleFilter.h>
 #include <vtkXMLPolyDataReader.h>
@@ -21,9 +23,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <fstream>
 
 namespace ligsim::io {
 
@@ -50,46 +49,25 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
   return reader->GetOutput();
 }
 
-/// A binary STL announces its triangle count in bytes 80..83 and then holds 50 bytes per
-/// triangle; a shorter file was cut off (an interrupted copy or export), and VTK would read the
-/// part that is there as an open surface.
-void require_whole_binary_stl(const fs::path& file)
-{
-  std::ifstream in(file, std::ios::binary);
-  std::string head(512, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const auto first = head.find_first_not_of(" \t\r\n");
-  const bool ascii =
-      first != std::string::npos && head.compare(first, 5, "solid") == 0 &&
-      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos);
-  if (ascii || head.size() < 84)
-    return;
-  std::uint32_t count = 0;
-  std::memcpy(&count, head.data() + 80, 4); // little-endian, as the format and x86 are
-  const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(count);
-  const std::uintmax_t size = fs::file_size(file);
-  if (size < expected)
-    fail("'{}' is a truncated binary STL: its header announces {} triangles ({} bytes) but the "
-         "file holds {} bytes ({} whole triangles)",
-         file.string(), count, expected, size, (size - 84) / 50);
-}
-
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 {
   const std::string extension = lower_extension(file);
-  if (extension == ".stl") {
-    require_whole_binary_stl(file);
-    return run_reader<vtkSTLReader>(file);
-  }
+  // STL and OBJ are read by our own code; PLY and legacy VTK are checked before VTK reads them
+  // (its readers crash on truncated files and trust the counts).
+  if (extension == ".stl")
+    return read_stl(file);
   if (extension == ".obj")
-    return run_reader<vtkOBJReader>(file);
-  if (extension == ".ply")
+    return read_obj(file);
+  if (extension == ".ply") {
+    check_ply(file);
     return run_reader<vtkPLYReader>(file);
+  }
   if (extension == ".vtp")
     return run_reader<vtkXMLPolyDataReader>(file);
-  if (extension == ".vtk")
+  if (extension == ".vtk") {
+    check_legacy_vtk(file);
     return run_reader<vtkPolyDataReader>(file);
+  }
   fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp or .vtk)", file.string(),
        extension);
 }
