@@ -3,14 +3,14 @@
 
 #include "common/error.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
-#include "tests/fuzz/fuzz_input_file.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   try {
     ligsim::pipeline::load_build_config(ligsim::fuzz::write_input_file(data, size, ".toml"));
-  } catch (const ligsim::Error&) {
-    // a clear error is the right answer to bad input
+  } catch (const ligsim::Error& error) {
+    ligsim::fuzz::rejected(error);
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include "common/error.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/flexion/flexion_settings.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -16,8 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     ligsim::sim::FlexionSettings settings;
     ligsim::sim::parse_flexion_config(text, "/nonexistent", "fuzz.toml", settings);
-  } catch (const ligsim::Error&) {
-    // a clear error is the right answer to bad input
+  } catch (const ligsim::Error& error) {
+    ligsim::fuzz::rejected(error);
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 
 #include "common/error.hpp"
 #include "sim/scene/scene.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -13,8 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     ligsim::sim::parse_scene(text, "/nonexistent", "fuzz.toml");
-  } catch (const ligsim::Error&) {
-    // a clear error is the right answer to bad input
+  } catch (const ligsim::Error& error) {
+    ligsim::fuzz::rejected(error);
   }
   return 0;
 }

@@ -4,15 +4,15 @@
 
 #include "common/error.hpp"
 #include "stages/io/surface_reader.hpp"
-#include "tests/fuzz/fuzz_input_file.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   static const std::string extension = LIGSIM_FUZZ_EXTENSION;
   try {
     ligsim::io::read_surface(ligsim::fuzz::write_input_file(data, size, extension));
-  } catch (const ligsim::Error&) {
-    // a clear error is the right answer to bad input
+  } catch (const ligsim::Error& error) {
+    ligsim::fuzz::rejected(error);
   }
   return 0;
 }
