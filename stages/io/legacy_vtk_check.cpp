@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -100,10 +101,11 @@ private:
   void header()
   {
     const std::string first = text_.rest_of_line();
-    const std::string magic = "# vtk DataFile Version ";
-    if (first.compare(0, magic.size(), magic) != 0)
-      text_.fail_here("a legacy VTK file starts with '{}'", magic);
-    new_layout_ = std::atof(first.c_str() + magic.size()) >= 5.0;
+    int major = 0, minor = 0;
+    if (first.size() > max_word_chars ||
+        std::sscanf(first.c_str(), "# vtk DataFile Version %d.%d", &major, &minor) != 2)
+      text_.fail_here("a legacy VTK file starts with '# vtk DataFile Version <major>.<minor>'");
+    new_layout_ = major >= 5; // as vtkDataReader decides: offsets and connectivity arrays
     text_.next_line();
     if (text_.position() == text_.size())
       text_.fail_here("the file ends after its first line");

@@ -10,6 +10,7 @@
 #include "stages/io/stl_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 
+#include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
 #include <vtkDataArray.h>
 #include <vtkPLYReader.h>
@@ -72,6 +73,39 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
        extension);
 }
 
+/// VTK's readers pass cells through unchecked: a face naming vertex 23333 of 3 makes the filters
+/// below read past the points, and a face of fewer than 3 corners makes vtkPolyData's cell map
+/// fail to build (and GetCellPoints then calls through a null map). Walks the cell arrays
+/// themselves, which need no map.
+void check_cells(vtkPolyData* raw, const fs::path& file)
+{
+  const vtkIdType point_count = raw->GetNumberOfPoints();
+  struct Kind {
+    vtkCellArray* cells;
+    const char* name;
+    vtkIdType min_corners;
+  };
+  vtkIdType face = 0; // counted over all kinds, in VTK's cell order
+  for (const Kind& kind :
+       {Kind{raw->GetVerts(), "vertex cell", 1}, Kind{raw->GetLines(), "line", 2},
+        Kind{raw->GetPolys(), "face", 3}, Kind{raw->GetStrips(), "strip", 3}}) {
+    if (kind.cells == nullptr)
+      continue;
+    for (vtkIdType c = 0; c < kind.cells->GetNumberOfCells(); ++c, ++face) {
+      vtkIdType size = 0;
+      const vtkIdType* ids = nullptr;
+      kind.cells->GetCellAtId(c, size, ids);
+      if (size < kind.min_corners)
+        fail("'{}': {} {} has {} corner(s), a {} needs at least {}", file.string(), kind.name, face,
+             size, kind.name, kind.min_corners);
+      for (vtkIdType k = 0; k < size; ++k)
+        if (ids[k] < 0 || ids[k] >= point_count)
+          fail("'{}': {} {} refers to vertex {}, but the file has {} vertices", file.string(),
+               kind.name, face, ids[k], point_count);
+    }
+  }
+}
+
 /// "vertices 12 (x, y, z) and 40 (x, y, z) mm", for messages that say where an edge is.
 std::string edge_text(const TriangleSurface& surface, const std::pair<int, int>& edge)
 {
@@ -100,18 +134,7 @@ TriangleSurface read_surface(const fs::path& file,
            p[2]);
   }
 
-  // VTK's readers pass face indices through unchecked (an OBJ face naming vertex 23333 of 3);
-  // the filters below would read past the points.
-  const vtkIdType point_count = raw->GetNumberOfPoints();
-  for (vtkIdType c = 0; c < raw->GetNumberOfCells(); ++c) {
-    vtkIdType size = 0;
-    const vtkIdType* ids = nullptr;
-    raw->GetCellPoints(c, size, ids);
-    for (vtkIdType k = 0; k < size; ++k)
-      if (ids[k] < 0 || ids[k] >= point_count)
-        fail("'{}': face {} refers to vertex {}, but the file has {} vertices", file.string(), c,
-             ids[k], point_count);
-  }
+  check_cells(raw, file);
 
   auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
   triangles->SetInputData(raw);

@@ -47,6 +47,8 @@ run_one() {
     >"$dir/row.md"
 }
 
+# Leaks of VTK and ITK on their own error paths, listed and explained there.
+export LSAN_OPTIONS="suppressions=$source_dir/lsan_suppressions.txt${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 mkdir -p "$out"
 running=0
 for target in "${targets[@]}"; do

@@ -92,6 +92,16 @@ TEST(ReaderFindings, TruncatedLegacyVtkPolygons)
                "expected the cell list, but the file ends (truncated?)");
 }
 
+TEST(ReaderFindings, FacesOfFewerThanThreeCorners)
+{
+  // A face of 2 corners (PLY) or of 1 (legacy VTK): vtkPolyData's cell map failed to build and
+  // read_surface called through its null pointer (UBSan, then SEGV).
+  expect_error(finding("ply_two_corner_face.ply"),
+               "face 2 has 2 corner(s), a face needs at least 3");
+  expect_error(finding("vtk_one_corner_polygon.vtk"),
+               "face 1 has 1 corner(s), a face needs at least 3");
+}
+
 TEST(ReaderFindings, LegacyVtkCellsNameExistingPoints)
 {
   const std::string head = "# vtk DataFile Version 3.0\ntet\nASCII\nDATASET POLYDATA\n"
@@ -106,6 +116,8 @@ TEST(ReaderFindings, LegacyVtkCellsNameExistingPoints)
                "cell 0 of 1 does not fit in the cell list of 4 numbers");
   expect_error(scratch("data.vtk", head + "POLYGONS 1 4\n3 0 2 1\nPOINT_DATA 5\n"),
                "the POINT_DATA count is 5, but the file has 4");
+  expect_error(scratch("version.vtk", "# vtk DataFile Version five\nt\nASCII\n"),
+               "line 1: a legacy VTK file starts with '# vtk DataFile Version <major>.<minor>'");
   expect_error(scratch("image.vtk", "# vtk DataFile Version 3.0\nt\nASCII\n"
                                     "DATASET STRUCTURED_POINTS\n"),
                "line 4: dataset type 'STRUCTURED_POINTS' is not a surface");
