@@ -120,7 +120,10 @@ Type header_type(TextCursor& text, const std::string& word)
 void check_header_line(TextCursor& text, const std::vector<std::string>& words,
                        std::vector<Element>& elements, Format& format, bool& have_format)
 {
-  if (words.empty() || words[0] == "comment" || words[0] == "obj_info")
+  // VTK's PLY reader frees an uninitialised pointer after a blank header line (fuzz finding).
+  if (words.empty())
+    text.fail_here("a blank line in the header");
+  if (words[0] == "comment" || words[0] == "obj_info")
     return;
   if (words[0] == "format") {
     if (words.size() != 3 || words[2] != "1.0")

@@ -9,6 +9,7 @@
 #include "stages/io/ply_check.hpp"
 #include "stages/io/stl_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
+#include "stages/io/vtp_check.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
@@ -53,8 +54,8 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 {
   const std::string extension = lower_extension(file);
-  // STL and OBJ are read by our own code; PLY and legacy VTK are checked before VTK reads them
-  // (its readers crash on truncated files and trust the counts).
+  // STL and OBJ are read by our own code; PLY, VTP and legacy VTK are checked before VTK reads
+  // them (its readers crash on truncated files and trust the counts).
   if (extension == ".stl")
     return read_stl(file);
   if (extension == ".obj")
@@ -63,8 +64,10 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
     check_ply(file);
     return run_reader<vtkPLYReader>(file);
   }
-  if (extension == ".vtp")
+  if (extension == ".vtp") {
+    check_vtp(file);
     return run_reader<vtkXMLPolyDataReader>(file);
+  }
   if (extension == ".vtk") {
     check_legacy_vtk(file);
     return run_reader<vtkPolyDataReader>(file);

@@ -1,6 +1,7 @@
 #include "stages/labelmap/itk_label_io.hpp"
 
 #include "common/error.hpp"
+#include "stages/io/metaimage_check.hpp"
 
 #include <itkImage.h>
 #include <itkImageFileReader.h>
@@ -36,14 +37,20 @@ void register_formats()
   });
 }
 
-bool supported_name(const fs::path& file)
+/// Whether the file name ends with `ending` (lower case), in any case.
+bool name_ends_with(const fs::path& file, const std::string& ending)
 {
   std::string name = file.filename().string();
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name.size() > ending.size() &&
+         name.compare(name.size() - ending.size(), std::string::npos, ending) == 0;
+}
+
+bool supported_name(const fs::path& file)
+{
   for (const char* ending : {".nrrd", ".nii", ".nii.gz", ".mha", ".mhd"})
-    if (name.size() > std::string(ending).size() &&
-        name.compare(name.size() - std::string(ending).size(), std::string::npos, ending) == 0)
+    if (name_ends_with(file, ending))
       return true;
   return false;
 }
@@ -62,6 +69,8 @@ RawLabelImage read(const fs::path& file)
   if (!fs::is_regular_file(file))
     fail("missing label map '{}'", file.string());
   require_supported(file);
+  if (name_ends_with(file, ".mha") || name_ends_with(file, ".mhd"))
+    io::check_metaimage_header(file); // ITK's MetaIO loops for ever on NDims = -3
   register_formats();
   // Ask the file first: a 4-D layered segmentation or a float image is a clear error.
   itk::ImageIOBase::Pointer io = itk::ImageIOFactory::CreateImageIO(

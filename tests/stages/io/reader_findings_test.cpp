@@ -2,6 +2,7 @@
 // the checks that fixed them: every one is now one InputError naming the file and the place.
 
 #include "common/error.hpp"
+#include "stages/io/metaimage_check.hpp"
 #include "stages/io/surface_reader.hpp"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,49 @@ TEST(ReaderFindings, FacesOfFewerThanThreeCorners)
                "face 2 has 2 corner(s), a face needs at least 3");
   expect_error(finding("vtk_one_corner_polygon.vtk"),
                "face 1 has 1 corner(s), a face needs at least 3");
+}
+
+TEST(ReaderFindings, PlyBlankHeaderLine)
+{
+  // vtkPLYReader freed an uninitialised pointer (ASan SEGV in ply_close).
+  expect_error(finding("ply_blank_header_line.ply"), "line 4: a blank line in the header");
+}
+
+TEST(ReaderFindings, VtpCountsAreWholeNumbers)
+{
+  // NumberOfComponents="-3": vtkXMLReader sized a vector from it (uncaught std::length_error).
+  expect_error(finding("vtp_negative_components.vtp"),
+               "line 5: NumberOfComponents=\"-3\": expected a whole number from 1 to 1024");
+  const std::string head = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\">\n<PolyData>\n";
+  expect_error(scratch("spaces.vtp", head + "<Piece NumberOfPoints = '-4' NumberOfPolys=\"1\">\n"),
+               "line 4: NumberOfPoints=\"-4\": expected a whole number from 0 to 2147483647");
+  expect_error(scratch("huge.vtp", head + "<Piece NumberOfPoints=\"4\" NumberOfPolys=\"9e9\">\n"),
+               "line 4: NumberOfPolys=\"9e9\": expected a whole number");
+}
+
+TEST(ReaderFindings, MetaImageDimensionCount)
+{
+  // NDims = -3: ITK's MetaIO read it as a huge count and looped until the fuzzer's timeout.
+  const fs::path file = finding("mha_negative_ndims.mha");
+  try {
+    io::check_metaimage_header(file);
+    ADD_FAILURE() << "NDims = -3 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "'" + file.string() +
+                                         "' line 2: NDims = '-3': expected a whole number "
+                                         "from 1 to 10");
+  }
+  const std::string tail = "DimSize = 4 3 2\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n";
+  EXPECT_NO_THROW(io::check_metaimage_header(scratch("three.mha", "NDims = 3\n" + tail + "\x01")));
+  EXPECT_NO_THROW(io::check_metaimage_header(scratch("ten.mha", "NDims=10\n" + tail)));
+  // The data after ElementDataFile are not header lines.
+  EXPECT_NO_THROW(
+      io::check_metaimage_header(scratch("data.mha", "NDims = 3\n" + tail + "NDims = 0\n")));
+  EXPECT_THROW(io::check_metaimage_header(scratch("eleven.mha", "NDims = 11\n" + tail)),
+               InputError);
+  EXPECT_THROW(
+      io::check_metaimage_header(scratch("zero.mha", "ObjectType = Image\nNDims = 0\n" + tail)),
+      InputError);
 }
 
 TEST(ReaderFindings, LegacyVtkCellsNameExistingPoints)
