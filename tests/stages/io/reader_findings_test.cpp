@@ -109,6 +109,17 @@ TEST(ReaderFindings, PlyBlankHeaderLine)
   expect_error(finding("ply_blank_header_line.ply"), "line 4: a blank line in the header");
 }
 
+TEST(ReaderFindings, PlyLastLineWithoutLineEnd)
+{
+  // vtkPLYReader freed a word list twice (ASan double-free) when the last face had no '\n'.
+  expect_error(finding("ply_last_line_without_line_end.ply"),
+               "line 17: face 3: the last line has no line end (truncated?)");
+  std::string body = tet_ply_body;
+  body.pop_back();
+  expect_error(scratch("cut.ply", tet_ply_header + body + " \r"), "face 3: the last line");
+  EXPECT_EQ(io::read_surface(scratch("whole.ply", tet_ply_header + tet_ply_body)).F.rows(), 4);
+}
+
 TEST(ReaderFindings, VtpCountsAreWholeNumbers)
 {
   // NumberOfComponents="-3": vtkXMLReader sized a vector from it (uncaught std::length_error).
