@@ -158,6 +158,11 @@ void check_header_line(TextCursor& text, const std::vector<std::string>& words,
       text.fail_here("expected 'property <type> <name>' or 'property list <count type> "
                      "<type> <name>' on this line");
     }
+    // Two properties of one name made vtkPLYReader read out of bounds (SEGV).
+    for (const Property& other : elements.back().properties)
+      if (other.name == p.name)
+        text.fail_here("property '{:.40}' is declared twice in element '{:.40}'", p.name,
+                       elements.back().name);
     elements.back().properties.push_back(p);
   } else {
     text.fail_here("unknown header line starting '{:.40}'", words[0]);
@@ -209,6 +214,9 @@ void require_surface_elements(TextCursor& text, const std::vector<Element>& elem
       }
     }
     if (e.name == "face") {
+      // vtkPLYReader reads the faces into the points it has read so far (SEGV without them).
+      if (!have_vertices)
+        text.fail_here("the face element comes before the vertex element");
       const Property* p = find_property(e, "vertex_indices");
       if (p == nullptr)
         p = find_property(e, "vertex_index");

@@ -109,6 +109,16 @@ TEST(ReaderFindings, PlyBlankHeaderLine)
   expect_error(finding("ply_blank_header_line.ply"), "line 4: a blank line in the header");
 }
 
+TEST(ReaderFindings, PlyHeaderOrderAndNames)
+{
+  // Found by hand next to the campaign's findings: faces declared before the vertices, or two
+  // properties of one name, made vtkPLYReader crash (ASan SEGV).
+  expect_error(finding("ply_faces_before_vertices.ply"),
+               "the face element comes before the vertex element");
+  expect_error(finding("ply_property_declared_twice.ply"),
+               "line 9: property 'vertex_indices' is declared twice in element 'face'");
+}
+
 TEST(ReaderFindings, PlyLastLineWithoutLineEnd)
 {
   // vtkPLYReader freed a word list twice (ASan double-free) when the last face had no '\n'.
