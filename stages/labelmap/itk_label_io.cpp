@@ -87,6 +87,15 @@ RawLabelImage read(const fs::path& file)
     fail("label map '{}' has {} dimensions and {} components per voxel: one 3-D layer of labels "
          "is needed (export a single-layer segmentation)",
          file.string(), io->GetNumberOfDimensions(), io->GetNumberOfComponents());
+  // ITK allocates what the header says before it reads a byte (a fuzzed DimSize asked for
+  // 206 GB); 2^28 voxels (1 GiB of labels) is more than a 0.3 mm knee MRI needs.
+  constexpr double max_voxels = 268435456.0;
+  const double voxels = static_cast<double>(io->GetDimensions(0)) *
+                        static_cast<double>(io->GetDimensions(1)) *
+                        static_cast<double>(io->GetDimensions(2));
+  if (voxels > max_voxels)
+    fail("label map '{}' is {} x {} x {} voxels, more than the 2^28 = 268435456 we read",
+         file.string(), io->GetDimensions(0), io->GetDimensions(1), io->GetDimensions(2));
   const auto type = io->GetComponentType();
   if (type == itk::IOComponentEnum::FLOAT || type == itk::IOComponentEnum::DOUBLE)
     fail("label map '{}' holds floating-point values, not integer labels", file.string());
