@@ -4,16 +4,20 @@
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
+#include "stages/io/legacy_vtk_check.hpp"
+#include "stages/io/obj_reader.hpp"
+#include "stages/io/ply_check.hpp"
+#include "stages/io/stl_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
+#include "stages/io/vtp_check.hpp"
 
+#include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
 #include <vtkDataArray.h>
-#include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
-#include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkTriangleFilter.h>
 #include <vtkXMLPolyDataReader.h>
@@ -21,9 +25,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <fstream>
 
 namespace ligsim::io {
 
@@ -50,48 +51,62 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
   return reader->GetOutput();
 }
 
-/// A binary STL announces its triangle count in bytes 80..83 and then holds 50 bytes per
-/// triangle; a shorter file was cut off (an interrupted copy or export), and VTK would read the
-/// part that is there as an open surface.
-void require_whole_binary_stl(const fs::path& file)
-{
-  std::ifstream in(file, std::ios::binary);
-  std::string head(512, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  const auto first = head.find_first_not_of(" \t\r\n");
-  const bool ascii =
-      first != std::string::npos && head.compare(first, 5, "solid") == 0 &&
-      (head.find("facet") != std::string::npos || head.find("endsolid") != std::string::npos);
-  if (ascii || head.size() < 84)
-    return;
-  std::uint32_t count = 0;
-  std::memcpy(&count, head.data() + 80, 4); // little-endian, as the format and x86 are
-  const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(count);
-  const std::uintmax_t size = fs::file_size(file);
-  if (size < expected)
-    fail("'{}' is a truncated binary STL: its header announces {} triangles ({} bytes) but the "
-         "file holds {} bytes ({} whole triangles)",
-         file.string(), count, expected, size, (size - 84) / 50);
-}
-
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
 {
   const std::string extension = lower_extension(file);
-  if (extension == ".stl") {
-    require_whole_binary_stl(file);
-    return run_reader<vtkSTLReader>(file);
-  }
+  // STL and OBJ are read by our own code; PLY, VTP and legacy VTK are checked before VTK reads
+  // them (its readers crash on truncated files and trust the counts).
+  if (extension == ".stl")
+    return read_stl(file);
   if (extension == ".obj")
-    return run_reader<vtkOBJReader>(file);
-  if (extension == ".ply")
+    return read_obj(file);
+  if (extension == ".ply") {
+    check_ply(file);
     return run_reader<vtkPLYReader>(file);
-  if (extension == ".vtp")
+  }
+  if (extension == ".vtp") {
+    check_vtp(file);
     return run_reader<vtkXMLPolyDataReader>(file);
-  if (extension == ".vtk")
+  }
+  if (extension == ".vtk") {
+    check_legacy_vtk(file);
     return run_reader<vtkPolyDataReader>(file);
+  }
   fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp or .vtk)", file.string(),
        extension);
+}
+
+/// VTK's readers pass cells through unchecked: a face naming vertex 23333 of 3 makes the filters
+/// below read past the points, and a face of fewer than 3 corners makes vtkPolyData's cell map
+/// fail to build (and GetCellPoints then calls through a null map). Walks the cell arrays
+/// themselves, which need no map.
+void check_cells(vtkPolyData* raw, const fs::path& file)
+{
+  const vtkIdType point_count = raw->GetNumberOfPoints();
+  struct Kind {
+    vtkCellArray* cells;
+    const char* name;
+    vtkIdType min_corners;
+  };
+  vtkIdType face = 0; // counted over all kinds, in VTK's cell order
+  for (const Kind& kind :
+       {Kind{raw->GetVerts(), "vertex cell", 1}, Kind{raw->GetLines(), "line", 2},
+        Kind{raw->GetPolys(), "face", 3}, Kind{raw->GetStrips(), "strip", 3}}) {
+    if (kind.cells == nullptr)
+      continue;
+    for (vtkIdType c = 0; c < kind.cells->GetNumberOfCells(); ++c, ++face) {
+      vtkIdType size = 0;
+      const vtkIdType* ids = nullptr;
+      kind.cells->GetCellAtId(c, size, ids);
+      if (size < kind.min_corners)
+        fail("'{}': {} {} has {} corner(s), a {} needs at least {}", file.string(), kind.name, face,
+             size, kind.name, kind.min_corners);
+      for (vtkIdType k = 0; k < size; ++k)
+        if (ids[k] < 0 || ids[k] >= point_count)
+          fail("'{}': {} {} refers to vertex {}, but the file has {} vertices", file.string(),
+               kind.name, face, ids[k], point_count);
+    }
+  }
 }
 
 /// "vertices 12 (x, y, z) and 40 (x, y, z) mm", for messages that say where an edge is.
@@ -122,18 +137,7 @@ TriangleSurface read_surface(const fs::path& file,
            p[2]);
   }
 
-  // VTK's readers pass face indices through unchecked (an OBJ face naming vertex 23333 of 3);
-  // the filters below would read past the points.
-  const vtkIdType point_count = raw->GetNumberOfPoints();
-  for (vtkIdType c = 0; c < raw->GetNumberOfCells(); ++c) {
-    vtkIdType size = 0;
-    const vtkIdType* ids = nullptr;
-    raw->GetCellPoints(c, size, ids);
-    for (vtkIdType k = 0; k < size; ++k)
-      if (ids[k] < 0 || ids[k] >= point_count)
-        fail("'{}': face {} refers to vertex {}, but the file has {} vertices", file.string(), c,
-             ids[k], point_count);
-  }
+  check_cells(raw, file);
 
   auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
   triangles->SetInputData(raw);

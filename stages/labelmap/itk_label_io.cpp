@@ -1,6 +1,7 @@
 #include "stages/labelmap/itk_label_io.hpp"
 
 #include "common/error.hpp"
+#include "stages/io/metaimage_check.hpp"
 
 #include <itkImage.h>
 #include <itkImageFileReader.h>
@@ -37,14 +38,20 @@ void register_formats()
   });
 }
 
-bool supported_name(const fs::path& file)
+/// Whether the file name ends with `ending` (lower case), in any case.
+bool name_ends_with(const fs::path& file, const std::string& ending)
 {
   std::string name = file.filename().string();
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name.size() > ending.size() &&
+         name.compare(name.size() - ending.size(), std::string::npos, ending) == 0;
+}
+
+bool supported_name(const fs::path& file)
+{
   for (const char* ending : {".nrrd", ".nii", ".nii.gz", ".mha", ".mhd"})
-    if (name.size() > std::string(ending).size() &&
-        name.compare(name.size() - std::string(ending).size(), std::string::npos, ending) == 0)
+    if (name_ends_with(file, ending))
       return true;
   return false;
 }
@@ -63,6 +70,8 @@ RawLabelImage read(const fs::path& file)
   if (!fs::is_regular_file(file))
     fail("missing label map '{}'", file.string());
   require_supported(file);
+  if (name_ends_with(file, ".mha") || name_ends_with(file, ".mhd"))
+    io::check_metaimage_header(file); // ITK's MetaIO loops for ever on NDims = -3
   register_formats();
   // Ask the file first: a 4-D layered segmentation or a float image is a clear error.
   itk::ImageIOBase::Pointer io = itk::ImageIOFactory::CreateImageIO(
@@ -84,6 +93,15 @@ RawLabelImage read(const fs::path& file)
     fail("label map '{}' has {} dimensions and {} components per voxel: one 3-D layer of labels "
          "is needed (export a single-layer segmentation)",
          file.string(), io->GetNumberOfDimensions(), io->GetNumberOfComponents());
+  // ITK allocates what the header says before it reads a byte (a fuzzed DimSize asked for
+  // 206 GB); 2^28 voxels (1 GiB of labels) is more than a 0.3 mm knee MRI needs.
+  constexpr double max_voxels = 268435456.0;
+  const double voxels = static_cast<double>(io->GetDimensions(0)) *
+                        static_cast<double>(io->GetDimensions(1)) *
+                        static_cast<double>(io->GetDimensions(2));
+  if (voxels > max_voxels)
+    fail("label map '{}' is {} x {} x {} voxels, more than the 2^28 = 268435456 we read",
+         file.string(), io->GetDimensions(0), io->GetDimensions(1), io->GetDimensions(2));
   const auto type = io->GetComponentType();
   if (type == itk::IOComponentEnum::FLOAT || type == itk::IOComponentEnum::DOUBLE)
     fail("label map '{}' holds floating-point values, not integer labels", file.string());

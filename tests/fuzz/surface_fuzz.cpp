@@ -4,27 +4,15 @@
 
 #include "common/error.hpp"
 #include "stages/io/surface_reader.hpp"
-
-#include <cstddef>
-#include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <string>
-#include <unistd.h>
+#include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  static const std::filesystem::path file =
-      std::filesystem::temp_directory_path() /
-      ("ligsim_fuzz_" + std::to_string(::getpid()) + LIGSIM_FUZZ_EXTENSION);
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  }
+  static const std::string extension = LIGSIM_FUZZ_EXTENSION;
   try {
-    ligsim::io::read_surface(file);
-  } catch (const ligsim::Error&) {
-    // a clear error is the right answer to bad input
+    ligsim::io::read_surface(ligsim::fuzz::write_input_file(data, size, extension));
+  } catch (const ligsim::Error& error) {
+    ligsim::fuzz::rejected(error);
   }
   return 0;
 }

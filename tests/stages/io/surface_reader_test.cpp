@@ -69,6 +69,11 @@ TEST(SurfaceReader, ReadsEveryFormatWithMergedVertices)
   expect_same_shape(io::read_surface(write_with<vtkPLYWriter>(data, "c.ply")), cylinder);
   expect_same_shape(io::read_surface(write_with<vtkXMLPolyDataWriter>(data, "c.vtp")), cylinder);
   expect_same_shape(io::read_surface(write_with<vtkPolyDataWriter>(data, "c.vtk")), cylinder);
+  // The pre-checks of PLY and legacy VTK know both encodings of VTK's own writers.
+  expect_same_shape(io::read_surface(write_with<vtkPLYWriter>(data, "c_ascii.ply", false)),
+                    cylinder);
+  expect_same_shape(io::read_surface(write_with<vtkPolyDataWriter>(data, "c_ascii.vtk", false)),
+                    cylinder);
 }
 
 TEST(SurfaceReader, ReadsTheRealMcl)

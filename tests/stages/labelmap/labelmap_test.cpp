@@ -13,6 +13,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 using namespace ligsim;
 using namespace ligsim::labelmap;
@@ -128,4 +130,32 @@ TEST(LabelImage, SurfaceLandsOnTheCylinderWithoutTheSliceStaircase)
   const double rms_smooth = radial_rms(smooth), rms_stairs = radial_rms(stairs);
   EXPECT_LT(rms_smooth, 0.2);
   EXPECT_LT(rms_smooth, rms_stairs);
+}
+
+TEST(LabelImage, HeadersThatWouldHangOrExhaustItkAreClearErrors)
+{
+  // Fuzz findings (tests/fuzz/corpus/label_mha): ITK's MetaIO looped for ever on NDims = -3,
+  // and allocated 206 GB for DimSize = 4 3 -2 before reading a byte.
+  const fs::path dir =
+      fs::temp_directory_path() / ("ligsim_labelmap_hdr_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto error_of = [&](const std::string& name, const std::string& header) -> std::string {
+    std::ofstream(dir / name, std::ios::binary)
+        << header << "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n"
+        << std::string(24, '\1');
+    try {
+      read_label_image(dir / name);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(error_of("ndims.mha", "ObjectType = Image\nNDims = -3\nDimSize = 4 3 2\n")
+                .find("line 2: NDims = '-3': expected a whole number from 1 to 10"),
+            std::string::npos);
+  EXPECT_NE(error_of("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 4 3 -2\n")
+                .find("is 4 x 3 x 4294967294 voxels, more than the 2^28 = 268435456 we read"),
+            std::string::npos);
+  EXPECT_EQ(error_of("fine.mha", "ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\n"), "no error");
+  fs::remove_all(dir);
 }
