@@ -48,7 +48,7 @@ run_one() {
 }
 
 # Leaks of VTK and ITK on their own error paths, listed and explained there.
-export LSAN_OPTIONS="suppressions=$source_dir/lsan_suppressions.txt${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+export LSAN_OPTIONS="suppressions=$source_dir/../lsan_suppressions.txt${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 mkdir -p "$out"
 running=0
 for target in "${targets[@]}"; do
