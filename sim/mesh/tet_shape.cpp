@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <cmath>
@@ -62,6 +63,18 @@ std::vector<TetShape> compute_rest_shapes(const TetMesh& mesh)
     shapes[static_cast<std::size_t>(e)] = shape;
   }
   return shapes;
+}
+
+Eigen::Vector3d toward_opposite_face(const TetMesh& mesh, Eigen::Index e, int i,
+                                     double volume_fraction)
+{
+  const Eigen::Vector3d p = mesh.V.row(mesh.T(e, i));
+  const Eigen::Vector3d a = mesh.V.row(mesh.T(e, (i + 1) % 4));
+  const Eigen::Vector3d b = mesh.V.row(mesh.T(e, (i + 2) % 4));
+  const Eigen::Vector3d c = mesh.V.row(mesh.T(e, (i + 3) % 4));
+  const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+  const double height = (p - a).dot(normal);
+  return p - (1.0 - volume_fraction) * height * normal;
 }
 
 } // namespace ligsim::sim

@@ -40,4 +40,10 @@ TetShape tet_shape(const TetCorners& P);
 /// the first offending node or element and the cause.
 std::vector<TetShape> compute_rest_shapes(const TetMesh& mesh);
 
+/// Where node `i` of element `e` goes, moved along the normal of its opposite face, for the
+/// element to keep `volume_fraction` of its volume (its height above that face scales by it):
+/// how the stability suites make slivers.
+Eigen::Vector3d toward_opposite_face(const TetMesh& mesh, Eigen::Index e, int i,
+                                     double volume_fraction);
+
 } // namespace ligsim::sim

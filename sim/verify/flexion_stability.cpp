@@ -7,6 +7,7 @@
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_model.hpp"
+#include "sim/mesh/tet_shape.hpp"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -407,16 +408,11 @@ int inject_slivers(TetMesh& mesh, int count, double volume_fraction, const std::
       const int node = mesh.T(e, i);
       if (locked[static_cast<std::size_t>(node)])
         continue;
-      const Eigen::Vector3d p = mesh.V.row(node);
-      const Eigen::Vector3d a = mesh.V.row(mesh.T(e, (i + 1) % 4));
-      const Eigen::Vector3d b = mesh.V.row(mesh.T(e, (i + 2) % 4));
-      const Eigen::Vector3d c = mesh.V.row(mesh.T(e, (i + 3) % 4));
-      const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-      const double height = (p - a).dot(normal);
+      const Eigen::Vector3d p = mesh.V.row(node); // restored if the move is refused
       std::vector<double> before;
       for (int other : elements_of[static_cast<std::size_t>(node)])
         before.push_back(signed_volume(mesh, other));
-      mesh.V.row(node) = (p - (1.0 - volume_fraction) * height * normal).transpose();
+      mesh.V.row(node) = toward_opposite_face(mesh, e, i, volume_fraction).transpose();
       bool valid = true;
       for (std::size_t k = 0; k < before.size(); ++k) {
         const int other = elements_of[static_cast<std::size_t>(node)][k];

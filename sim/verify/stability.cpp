@@ -4,6 +4,7 @@
 #include "common/resources.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
+#include "sim/mesh/tet_shape.hpp"
 #include "sim/solver/arc_length.hpp"
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
@@ -70,15 +71,8 @@ void make_sliver(TetMesh& mesh, int& element)
     for (int i = 0; i < 4; ++i)
       if (mesh.T(e, i) == middle) {
         element = static_cast<int>(e);
-        // Project the node onto the opposite face's plane, then lift it back by 2 % of the
-        // original height: the element keeps its edges but loses 98 % of its volume.
-        const Eigen::Vector3d p = mesh.V.row(middle);
-        const Eigen::Vector3d a = mesh.V.row(mesh.T(e, (i + 1) % 4));
-        const Eigen::Vector3d b = mesh.V.row(mesh.T(e, (i + 2) % 4));
-        const Eigen::Vector3d c = mesh.V.row(mesh.T(e, (i + 3) % 4));
-        const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-        const double height = (p - a).dot(normal);
-        mesh.V.row(middle) = (p - 0.98 * height * normal).transpose();
+        // Move the node toward the opposite face's plane: the element keeps 2 % of its volume.
+        mesh.V.row(middle) = toward_opposite_face(mesh, e, i, 0.02).transpose();
         return;
       }
 }
