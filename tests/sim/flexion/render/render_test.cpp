@@ -2,9 +2,11 @@
 #include "sim/flexion/render/ligament_picture.hpp"
 #include "sim/flexion/render/line_plot_picture.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
+#include "sim/flexion/render/window_png.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
+#include <link.h>
 #include <vtkCellData.h>
 #include <vtkCubeSource.h>
 #include <vtkDoubleArray.h>
@@ -13,6 +15,8 @@
 #include <vtkPNGReader.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <array>
@@ -197,6 +201,21 @@ std::string rgb_text(const std::array<int, 3>& c)
 }
 
 /// Only the target and no temporary sibling in `dir`.
+/// The Mesa DRI drivers (".../dri/<name>_dri.so") this process has loaded now.
+std::set<std::string> loaded_gl_drivers()
+{
+  std::set<std::string> drivers;
+  dl_iterate_phdr(
+      [](dl_phdr_info* module, size_t, void* found) {
+        const std::string path = module->dlpi_name ? module->dlpi_name : "";
+        if (path.size() > 7 && path.compare(path.size() - 7, 7, "_dri.so") == 0)
+          static_cast<std::set<std::string>*>(found)->insert(path);
+        return 0;
+      },
+      &drivers);
+  return drivers;
+}
+
 size_t file_count(const fs::path& dir)
 {
   size_t n = 0;
@@ -230,6 +249,29 @@ TEST(OffscreenDisplay, StartsXvfbTwiceAndLeavesNoServer)
     EXPECT_FALSE(process_exists(pid)) << "Xvfb " << pid << " is still there (or unreaped)";
     EXPECT_EQ(std::getenv("DISPLAY"), nullptr);
   }
+}
+
+// libGLX_mesa unloads the driver when a window closes its X connection; LeakSanitizer then
+// reports what only the driver's globals pointed to (the sanitizer suite's LigamentPicture and
+// FlexionCli failures).
+TEST(OffscreenDisplay, GlDriverStaysLoadedAfterItsWindowCloses)
+{
+  OffscreenDisplay display;
+  const TestDir test_dir("driver");
+  std::set<std::string> while_open;
+  {
+    vtkNew<vtkRenderWindow> window;
+    ligsim::sim::prepare_offscreen_window(window, 64, 64);
+    vtkNew<vtkRenderer> renderer;
+    window->AddRenderer(renderer);
+    ligsim::sim::write_window_png(window, test_dir.path() / "empty.png");
+    while_open = loaded_gl_drivers();
+  }
+  if (while_open.empty())
+    GTEST_SKIP() << "VTK renders without a Mesa DRI driver here";
+  const std::set<std::string> after = loaded_gl_drivers();
+  for (const std::string& driver : while_open)
+    EXPECT_EQ(after.count(driver), 1u) << driver << " was unloaded";
 }
 
 TEST(OffscreenDisplay, ServerStopsWhenAnExceptionUnwinds)
