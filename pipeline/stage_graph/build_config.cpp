@@ -1,6 +1,7 @@
 #include "pipeline/stage_graph/build_config.hpp"
 
 #include "common/error.hpp"
+#include "common/toml_numbers.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 
 #include <toml++/toml.h>
@@ -33,13 +34,13 @@ public:
     if (node == nullptr)
       return;
     if constexpr (std::is_same_v<T, double>) {
-      if (auto v = node->value<double>()) { // accepts integers too
+      if (auto v = toml_number(*node)) {
         target = *v;
         return;
       }
     } else if constexpr (std::is_same_v<T, int>) {
-      if (auto v = node->value<int64_t>()) {
-        target = static_cast<int>(*v);
+      if (auto v = toml_int(*node)) {
+        target = *v;
         return;
       }
     } else if constexpr (std::is_same_v<T, bool>) {
@@ -56,17 +57,17 @@ public:
       if (const toml::array* array = node->as_array()) {
         target.clear();
         for (const toml::node& item : *array) {
-          const auto v = item.value<int64_t>();
+          const auto v = toml_int(item);
           if (!v)
             type_error(key, node, "a list of integers");
-          target.push_back(static_cast<int>(*v));
+          target.push_back(*v);
         }
         return;
       }
     } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
       if (const toml::array* array = node->as_array(); array && array->size() == 3) {
         for (std::size_t i = 0; i < 3; ++i) {
-          const auto v = (*array)[i].value<double>();
+          const auto v = toml_number(*array->get(i));
           if (!v)
             type_error(key, node, "three numbers");
           target[static_cast<Eigen::Index>(i)] = *v;

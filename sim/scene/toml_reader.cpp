@@ -1,6 +1,7 @@
 #include "sim/scene/toml_reader.hpp"
 
 #include "common/error.hpp"
+#include "common/toml_numbers.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -9,27 +10,6 @@
 #include <sstream>
 
 namespace ligsim::sim {
-
-namespace {
-
-/// A TOML number (integer or float) as a double. toml++'s value<double>() gives nothing for an
-/// integer beyond 2^53 (not exact in a double); the nearest double is what `5e17` written as an
-/// integer means (fuzz finding: `angles_deg = [0, 500000000000000000]` was bad_optional_access).
-double number_of(const toml::node& number)
-{
-  if (const toml::value<std::int64_t>* integer = number.as_integer())
-    return static_cast<double>(integer->get());
-  return number.value<double>().value();
-}
-
-/// A TOML integer that must fit an int.
-bool fits_int(const toml::node& integer)
-{
-  const std::int64_t value = integer.value<std::int64_t>().value();
-  return value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max();
-}
-
-} // namespace
 
 toml::table parse_toml(const std::string& text, const std::string& name)
 {
@@ -77,13 +57,12 @@ const toml::node& TomlTable::node(const std::string& key)
 
 double TomlTable::required_number(const std::string& key)
 {
-  const toml::node& value = node(key);
-  if (!value.is_number())
+  const std::optional<double> number = toml_number(node(key));
+  if (!number)
     fail_at(key, "expected a number");
-  const double number = number_of(value);
-  if (!std::isfinite(number))
+  if (!std::isfinite(*number))
     fail_at(key, "expected a finite number");
-  return number;
+  return *number;
 }
 
 double TomlTable::number(const std::string& key, double fallback)
@@ -95,10 +74,10 @@ int TomlTable::integer(const std::string& key, int fallback)
 {
   if (!has(key))
     return fallback;
-  const toml::node& value = node(key);
-  if (!value.is_integer() || !fits_int(value))
+  const std::optional<int> value = toml_int(node(key));
+  if (!value)
     fail_at(key, "expected an integer (at most 2147483647 in size)");
-  return static_cast<int>(value.value<std::int64_t>().value());
+  return *value;
 }
 
 bool TomlTable::boolean(const std::string& key, bool fallback)
@@ -132,10 +111,10 @@ Eigen::Vector3d TomlTable::required_vector3(const std::string& key)
     fail_at(key, "expected an array of 3 numbers");
   Eigen::Vector3d result;
   for (std::size_t i = 0; i < 3; ++i) {
-    const toml::node& item = *array->get(i);
-    if (!item.is_number() || !std::isfinite(number_of(item)))
+    const std::optional<double> item = toml_number(*array->get(i));
+    if (!item || !std::isfinite(*item))
       fail_at(key, "expected an array of 3 finite numbers");
-    result(static_cast<Eigen::Index>(i)) = number_of(item);
+    result(static_cast<Eigen::Index>(i)) = *item;
   }
   return result;
 }
@@ -160,9 +139,10 @@ std::vector<int> TomlTable::integers(const std::string& key)
     fail_at(key, "expected an array of integers");
   std::vector<int> values;
   for (const toml::node& item : *array) {
-    if (!item.is_integer() || !fits_int(item))
+    const std::optional<int> value = toml_int(item);
+    if (!value)
       fail_at(key, "expected an array of integers (each at most 2147483647 in size)");
-    values.push_back(static_cast<int>(item.value<std::int64_t>().value()));
+    values.push_back(*value);
   }
   return values;
 }
@@ -188,9 +168,10 @@ std::vector<double> TomlTable::numbers(const std::string& key)
     fail_at(key, "expected an array of numbers");
   std::vector<double> values;
   for (const toml::node& item : *array) {
-    if (!item.is_number() || !std::isfinite(number_of(item)))
+    const std::optional<double> value = toml_number(item);
+    if (!value || !std::isfinite(*value))
       fail_at(key, "expected an array of finite numbers");
-    values.push_back(number_of(item));
+    values.push_back(*value);
   }
   return values;
 }

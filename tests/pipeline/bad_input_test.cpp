@@ -146,6 +146,16 @@ TEST(BuildBadInput, ConfigWithUnknownKey)
                        "unknown key 'alfa'");
 }
 
+// An integer beyond int was cast and wrapped (5000000000 became 705032704 iterations).
+TEST(BuildBadInput, ConfigIntegerBeyondIntIsRefused)
+{
+  const fs::path config =
+      write_text("ligsim_big.toml", "[input]\nsurface = \"x.stl\"\n"
+                                    "[centerline]\nrelax_iterations = 5000000000\n");
+  expect_clean_failure("build --config " + config.string(), fresh_folder("config_int"),
+                       "[centerline] relax_iterations must be an integer");
+}
+
 TEST(BuildBadInput, StrictRefusesANonManifoldEdgeAndSaysWhere)
 {
   // Two closed tetrahedra sharing the edge (1, 0, 0)-(0, 1, 0): four triangles there. The

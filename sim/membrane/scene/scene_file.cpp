@@ -1,4 +1,5 @@
 #include "common/error.hpp"
+#include "common/toml_numbers.hpp"
 #include "sim/membrane/scene/scene.hpp"
 
 #include <toml++/toml.h>
@@ -53,7 +54,7 @@ public:
   {
     if (!has(key))
       return std::nullopt;
-    const auto value = (*m_table)[key].value<double>();
+    const auto value = toml_number(*m_table->get(key));
     if (!value || !std::isfinite(*value))
       fail("{}: '{}' must be a finite number", m_where, key);
     return value;
@@ -114,7 +115,7 @@ public:
       fail("{}: '{}' must be [x_min, y_min, x_max, y_max]", m_where, key);
     Eigen::Vector4d box;
     for (int i = 0; i < 4; ++i) {
-      const auto value = (*list)[i].value<double>();
+      const auto value = toml_number(*list->get(i));
       if (!value)
         fail("{}: '{}' must hold numbers", m_where, key);
       box[i] = *value;
@@ -129,9 +130,11 @@ public:
 private:
   Vec2 point_from(const toml::array* pair, const char* key) const
   {
-    if (!pair || pair->size() != 2 || !(*pair)[0].value<double>() || !(*pair)[1].value<double>())
+    const auto x = pair && pair->size() == 2 ? toml_number(*pair->get(0)) : std::nullopt;
+    const auto y = pair && pair->size() == 2 ? toml_number(*pair->get(1)) : std::nullopt;
+    if (!x || !y)
       fail("{}: '{}' must be a point [x, y]", m_where, key);
-    return {*(*pair)[0].value<double>(), *(*pair)[1].value<double>()};
+    return {*x, *y};
   }
 
   const toml::table* m_table;

@@ -88,6 +88,12 @@ TEST_F(MembraneSceneFile, ErrorsNameTheFileAndTheProblem)
       std::string::npos);
   EXPECT_NE(error_of(variant("time_step_s = 1e-3", "time_step_s = -1.0")).find("time_step_s"),
             std::string::npos);
+  // An integer beyond 2^53 is a number (it was "must be a finite number"); the range check names
+  // it.
+  const std::string big =
+      error_of(variant("max_turn_deg = 45.0", "max_turn_deg = 9007199254740993"));
+  EXPECT_NE(big.find("max_turn_deg"), std::string::npos) << big;
+  EXPECT_EQ(big.find("finite number"), std::string::npos) << big;
   EXPECT_NE(
       error_of(variant("min_angle_deg = 10.0", "min_angle_deg = 25.0")).find("below min_angle_deg"),
       std::string::npos);
