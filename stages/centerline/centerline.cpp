@@ -96,7 +96,7 @@ constexpr std::uint8_t kNoStep = 255;
 /// bricks: the path cost and the step back towards the source (an index into
 /// neighbourhood_26()), 5 bytes per stored voxel.
 struct ShortestPaths {
-  Eigen::Vector3i source;
+  Eigen::Vector3i source = Eigen::Vector3i::Zero(); // Eigen leaves a default vector unset
   ScalarGrid cost;
   Grid<std::uint8_t> step_back;
   bool reaches(const Eigen::Vector3i& v) const { return v == source || step_back(v) != kNoStep; }
@@ -386,8 +386,7 @@ Centerline extract(const Mask& mask, const ScalarGrid& distance, const Points& s
     const Eigen::Vector3d a = mask.point_of(start_voxel), b = mask.point_of(end_voxel);
     fail("the attachment areas cannot be connected inside the ligament: the voxels nearest them, "
          "at ({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) mm, lie in different parts of "
-         "the "
-         "voxel image (try a smaller voxel spacing)",
+         "the voxel image (try a smaller voxel spacing)",
          a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
   }
 
