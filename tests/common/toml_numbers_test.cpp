@@ -7,14 +7,10 @@
 namespace ligsim {
 namespace {
 
-toml::table parse(const char* text)
-{
-  return toml::parse(text);
-}
-
 TEST(TomlNumbers, IntegersAndFloatsAreNumbersAndNothingElseIs)
 {
-  const toml::table table = parse("i = -7\nf = 2.5\ninf = inf\ns = \"3\"\nb = true\na = [1]\n");
+  const toml::table table =
+      toml::parse("i = -7\nf = 2.5\ninf = inf\ns = \"3\"\nb = true\na = [1]\n");
   EXPECT_EQ(toml_number(*table.get("i")), -7.0);
   EXPECT_EQ(toml_number(*table.get("f")), 2.5);
   ASSERT_TRUE(toml_number(*table.get("inf")));
@@ -28,15 +24,15 @@ TEST(TomlNumbers, IntegersAndFloatsAreNumbersAndNothingElseIs)
 // "expected a number" of a number.
 TEST(TomlNumbers, IntegerBeyondTwoToThe53IsItsNearestDouble)
 {
-  const toml::table table = parse("big = 9007199254740993\nhuge = -500000000000000000\n");
+  const toml::table table = toml::parse("big = 9007199254740993\nhuge = -500000000000000000\n");
   EXPECT_EQ(toml_number(*table.get("big")), 9007199254740992.0);
   EXPECT_EQ(toml_number(*table.get("huge")), -5e17);
 }
 
 TEST(TomlNumbers, IntOnlyForIntegersInIntRange)
 {
-  const toml::table table = parse("a = 2147483647\nb = -2147483648\nc = 2147483648\n"
-                                  "d = 5000000000\ne = 3.0\nf = \"4\"\n");
+  const toml::table table = toml::parse("a = 2147483647\nb = -2147483648\nc = 2147483648\n"
+                                        "d = 5000000000\ne = 3.0\nf = \"4\"\n");
   EXPECT_EQ(toml_int(*table.get("a")), 2147483647);
   EXPECT_EQ(toml_int(*table.get("b")), -2147483647 - 1);
   EXPECT_FALSE(toml_int(*table.get("c")));

@@ -3,6 +3,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "sim/flexion/render/gl_driver.hpp"
 
 #include <vtkNew.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -10,41 +11,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkWindowToImageFilter.h>
 
-#include <dlfcn.h>
-#include <link.h>
-#include <string>
-#include <vector>
-
 namespace ligsim::sim {
-
-namespace {
-
-/// Keeps every Mesa DRI driver now loaded (".../dri/<name>_dri.so") mapped until the process
-/// exits. libGLX_mesa unloads the driver when a VTK window closes its X connection; the few
-/// blocks only the driver's globals point to (two 56-byte blocks of llvmpipe) then count as
-/// leaks for LeakSanitizer in every run that renders, and its report cannot even name the
-/// unloaded module. Keeping it costs nothing measurable (the picture tests take 0.7-0.9 s
-/// either way) and spares the next picture a reload.
-void keep_gl_driver_loaded()
-{
-  std::vector<std::string> drivers;
-  dl_iterate_phdr(
-      [](dl_phdr_info* module, size_t, void* found) {
-        const std::string path = module->dlpi_name ? module->dlpi_name : "";
-        const std::string suffix = "_dri.so";
-        if (path.size() > suffix.size() &&
-            path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0)
-          static_cast<std::vector<std::string>*>(found)->push_back(path);
-        return 0;
-      },
-      &drivers);
-  // Outside the iteration, which holds the loader's lock. The handle is never closed: that
-  // reference, and RTLD_NODELETE, are the point.
-  for (const std::string& driver : drivers)
-    dlopen(driver.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
-}
-
-} // namespace
 
 void prepare_offscreen_window(vtkRenderWindow* window, int width, int height)
 {
@@ -68,7 +35,7 @@ void write_window_png(vtkRenderWindow* window, const std::filesystem::path& png)
     if (trap.caught())
       fail<Error>("cannot render '{}' with OpenGL: {}", png.string(), trap.message());
   }
-  keep_gl_driver_loaded();
+  keep_gl_drivers_loaded();
   vtkNew<vtkWindowToImageFilter> capture;
   capture->SetInput(window);
   capture->SetInputBufferTypeToRGB();
