@@ -72,9 +72,9 @@ ContactPotential::Pose ContactPotential::pose(std::size_t o, double t) const
   const std::optional<RigidMotion>& motion = m_obstacles[o].motion;
   if (!motion)
     return p;
-  p.rotation = Eigen::AngleAxisd(t * motion->angle_rad, motion->axis).toRotationMatrix();
-  p.origin = motion->point_mm;
-  p.shift = t * motion->translation_mm;
+  const Eigen::Isometry3d transform = motion->pose(t);
+  p.rotation = transform.linear();
+  p.shift = transform.translation();
   return p;
 }
 
@@ -248,7 +248,7 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
         s = field.sample(p, false);
       }
       if (s.distance_mm > 0.0) {
-        x.segment<3>(3 * pair.node) = at.rotation * (p - at.origin) + at.origin + at.shift;
+        x.segment<3>(3 * pair.node) = at.rotation * p + at.shift;
         ++moved;
       }
     }

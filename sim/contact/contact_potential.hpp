@@ -70,11 +70,10 @@ public:
 private:
   struct Pose {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); ///< rest frame to world
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();       ///< world = R (p - c) + c + shift
-    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();        ///< world = R p + shift
     Eigen::Vector3d to_local(const Eigen::Vector3d& world) const
     {
-      return rotation.transpose() * (world - origin - shift) + origin;
+      return rotation.transpose() * (world - shift);
     }
   };
   /// One (obstacle, node) pair that may touch.

@@ -107,20 +107,12 @@ std::vector<BoneContact> KneeContact::measure(const Eigen::VectorXd& x, double t
     contact.nodes = measures.active_nodes[b];
     contact.min_gap_mm = measures.min_gap_mm[b];
     // Back into the bone's rest frame, where its triangles are.
-    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-    if (bone.motion) {
-      rotation =
-          Eigen::AngleAxisd(t * bone.motion->angle_rad, bone.motion->axis).toRotationMatrix();
-      origin = bone.motion->point_mm;
-      shift = t * bone.motion->translation_mm;
-    }
+    const Eigen::Isometry3d to_rest =
+        bone.motion ? bone.motion->pose(t).inverse() : Eigen::Isometry3d::Identity();
     for (Eigen::Index n = 0; n < x.size() / 3; ++n) {
       if (bone.bound[static_cast<std::size_t>(n)])
         continue;
-      const Eigen::Vector3d p =
-          rotation.transpose() * (x.segment<3>(3 * n) - origin - shift) + origin;
+      const Eigen::Vector3d p = to_rest * Eigen::Vector3d(x.segment<3>(3 * n));
       double xyz[3] = {p.x(), p.y(), p.z()};
       contact.penetration_mm = std::max(contact.penetration_mm, -bone.exact->EvaluateFunction(xyz));
     }

@@ -6,10 +6,14 @@
 
 namespace ligsim::sim {
 
-Eigen::Vector3d RigidMotion::apply(const Eigen::Vector3d& rest_mm, double t) const
+Eigen::Isometry3d RigidMotion::pose(double t) const
 {
-  const Eigen::AngleAxisd rotation(t * angle_rad, axis);
-  return rotation * (rest_mm - point_mm) + point_mm + t * translation_mm;
+  if (path)
+    return path->pose(t);
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.linear() = Eigen::AngleAxisd(t * angle_rad, axis).toRotationMatrix();
+  transform.translation() = point_mm - transform.linear() * point_mm + t * translation_mm;
+  return transform;
 }
 
 Eigen::Vector3d ConstraintSet::target(const Eigen::Vector3d& rest_mm, double t) const
@@ -28,7 +32,7 @@ DofPartition::DofPartition(int node_count, const BoundaryConditions& conditions,
     const ConstraintSet& set = conditions.constraints[s];
     if (set.nodes.empty())
       fail("constraint on node set '{}': the set selects no nodes", set.name);
-    if (set.rigid && set.rigid->axis.norm() < 1e-12)
+    if (set.rigid && !set.rigid->path && set.rigid->axis.norm() < 1e-12)
       fail("rigid motion of node set '{}': the rotation axis has zero length", set.name);
     if (set.rigid || set.displacement_mm.norm() > 0.0)
       m_moving = true;
@@ -77,13 +81,20 @@ DofPartition::DofPartition(int node_count, const BoundaryConditions& conditions,
 void DofPartition::apply_targets(const BoundaryConditions& conditions, const Points& rest, double t,
                                  Eigen::VectorXd& x) const
 {
-  for (const ConstraintSet& set : conditions.constraints)
+  for (const ConstraintSet& set : conditions.constraints) {
+    if (set.rigid) { // one pose per set, not per node: a path may be costly to evaluate
+      const Eigen::Isometry3d pose = set.rigid->pose(t);
+      for (int node : set.nodes)
+        x.segment<3>(3 * node) = pose * Eigen::Vector3d(rest.row(node).transpose());
+      continue;
+    }
     for (int node : set.nodes) {
       const Eigen::Vector3d target = set.target(rest.row(node).transpose(), t);
       for (int a = 0; a < 3; ++a)
-        if (set.rigid || set.components[static_cast<std::size_t>(a)])
+        if (set.components[static_cast<std::size_t>(a)])
           x(3 * node + a) = target(a);
     }
+  }
 }
 
 Eigen::VectorXd DofPartition::external_forces(const BoundaryConditions& conditions) const

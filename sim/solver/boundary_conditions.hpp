@@ -6,22 +6,40 @@
 
 #include <Eigen/Core>
 
+#include <Eigen/Geometry>
+
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace ligsim::sim {
 
-/// A rigid motion ramped by the load factor: rotation by t * angle about the axis through
-/// `point_mm`, then translation by t * translation_mm.
+/// A rigid body's pose as any function of the load factor (a knee's six-degree-of-freedom path,
+/// for example): the transform from the body's rest pose at t, mm.
+class RigidPath {
+public:
+  virtual ~RigidPath() = default;
+  virtual Eigen::Isometry3d pose(double t) const = 0;
+};
+
+/// A rigid motion of the load factor t: by default rotation by t * angle about the axis through
+/// `point_mm`, then translation by t * translation_mm; when `path` is set, its pose at t instead
+/// (the four fields are then not used).
 struct RigidMotion {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ(); ///< unit vector
   Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();
   double angle_rad = 0.0;
   Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
+  std::shared_ptr<const RigidPath> path;
 
-  Eigen::Vector3d apply(const Eigen::Vector3d& rest_mm, double t) const;
+  /// The transform from the rest pose at load factor t.
+  Eigen::Isometry3d pose(double t) const;
+  Eigen::Vector3d apply(const Eigen::Vector3d& rest_mm, double t) const
+  {
+    return pose(t) * rest_mm;
+  }
 };
 
 /// One named node set whose components are prescribed.
