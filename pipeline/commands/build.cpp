@@ -66,9 +66,13 @@ void add_options(CLI::App* command, BuildOptions& o)
                    "label map, same stem)")
       ->group(label_map);
   auto* attach = "Attachment areas";
-  command->add_option("--femur-rule", o.femur_rule, "auto, indices, array, proximity or end")
+  command
+      ->add_option("--femur-rule", o.femur_rule,
+                   "auto, indices, array, proximity, patch, landmark or end")
       ->group(attach);
-  command->add_option("--tibia-rule", o.tibia_rule, "auto, indices, array, proximity or end")
+  command
+      ->add_option("--tibia-rule", o.tibia_rule,
+                   "auto, indices, array, proximity, patch, landmark or end")
       ->group(attach);
   command->add_option("--femur-indices", o.femur_indices, "ligament vertex indices of A1")
       ->delimiter(',')
@@ -88,8 +92,10 @@ void add_options(CLI::App* command, BuildOptions& o)
       ->add_option("--end-length", o.end_length,
                    "end rule: length of the end along the main axis, mm (default 5)")
       ->group(attach);
-  command->add_option("--femur-end", o.femur_end, "end rule: min, max or auto")->group(attach);
-  command->add_option("--tibia-end", o.tibia_end, "end rule: min, max or auto")->group(attach);
+  command->add_option("--femur-end", o.femur_end, "end rule: proximal, distal, min, max or auto")
+      ->group(attach);
+  command->add_option("--tibia-end", o.tibia_end, "end rule: proximal, distal, min, max or auto")
+      ->group(attach);
   auto* stages = "Stage parameters";
   command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")
       ->group(stages);

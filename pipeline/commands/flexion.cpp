@@ -81,16 +81,25 @@ sim::FlexionSettings settings_from(const FlexionOptions& options)
   return settings;
 }
 
-void record_parameters(const sim::FlexionSettings& settings, const sim::ResolvedAxis& axis,
+void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,
                        RunSummary& summary)
 {
+  const sim::ResolvedAxis& axis = motion.axis;
   nlohmann::json& parameters = summary.parameters();
-  parameters["angles_deg"] = settings.angles_deg;
+  parameters["angles_deg"] = motion.angles_deg;
+  if (!motion.times_s.empty())
+    parameters["times_s"] = motion.times_s;
   parameters["mode"] = to_string(settings.mode);
   parameters["axis"] = {{"method", axis.method},
                         {"point_mm", json_vector3(axis.axis.point_mm)},
                         {"direction", json_vector3(axis.axis.direction)},
                         {"fit", axis.figures}};
+  parameters["motion"] = motion.figures;
+  parameters["motion"]["joint_coordinate_system"] = {
+      {"origin_mm", json_vector3(motion.jcs.origin_mm)},
+      {"flexion_axis", json_vector3(motion.jcs.flexion_axis)},
+      {"tibial_axis", json_vector3(motion.jcs.tibial_axis)},
+      {"reference", "Grood & Suntay, J Biomech Eng 1983;105:136"}};
   const sim::MaterialParameters& m = settings.material;
   parameters["material"] = {{"mu_mpa", m.mu_mpa},
                             {"k_mpa", m.bulk_modulus_mpa},
@@ -126,6 +135,26 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::Resolved
                                  {"linear_solver", to_string(settings.interactive.linear_solver)}};
 }
 
+/// The axis, the other anatomical axis and the path, one line each on stderr.
+void log_motion(const sim::KneeMotion& motion)
+{
+  const Eigen::Vector3d& d = motion.axis.axis.direction;
+  log_info(fmt::format("flexion axis: {} (direction {:.3f}, {:.3f}, {:.3f})", motion.axis.method,
+                       d.x(), d.y(), d.z()));
+  if (motion.figures.contains("other_axis")) {
+    const nlohmann::json& other = motion.figures["other_axis"];
+    if (other.contains("angle_deg"))
+      log_info(fmt::format("flexion axis: the {} axis lies {:.1f} degrees from it",
+                           other["method"].get<std::string>(), other["angle_deg"].get<double>()));
+    else
+      log_info(fmt::format("flexion axis: no {} axis to compare ({})",
+                           other["method"].get<std::string>(),
+                           other["not_available"].get<std::string>()));
+  }
+  log_info(fmt::format("knee motion: {} ({} knee)", motion.figures["path"].get<std::string>(),
+                       motion.figures["side"].get<std::string>()));
+}
+
 void run_flexion(const FlexionOptions& options)
 {
   RunSummary summary("flexion");
@@ -135,12 +164,14 @@ void run_flexion(const FlexionOptions& options)
   if (!options.config.empty())
     summary.inputs()["config"] = options.config.string();
   const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
-  const sim::ResolvedAxis axis = sim::resolve_flexion_axis(model, settings.axis);
-  record_parameters(settings, axis, summary);
+  const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
+  record_parameters(settings, motion, summary);
+  log_motion(motion);
   const sim::HyperelasticBody body(model.mesh, settings.material,
                                    sim::prestretched_fibers(model, settings.in_situ_strain));
-  const sim::BoundaryConditions conditions =
-      sim::knee_conditions(model, axis.axis, settings.angles_deg.back());
+  const sim::RigidMotion femur_motion = sim::femur_rigid_motion(motion);
+  const sim::BoundaryConditions conditions = sim::knee_conditions(model, femur_motion);
+  const sim::SweepSteps steps = sim::motion_steps(motion);
   // Built with contact off as well: it measures how deep the ligament goes into the bones.
   const sim::KneeContact contact(model, conditions, settings.contact,
                                  settings.model_dir / "contact");
@@ -157,8 +188,9 @@ void run_flexion(const FlexionOptions& options)
                      {"contact", contact.figures()}});
 
   ensure_directory(options.out);
-  sim::FlexionOutput output(body, model, axis.axis, options.out);
-  sim::FlexionPictures pictures(model, output, axis.axis, settings.image_angles_deg, options.out);
+  sim::FlexionOutput output(body, model, femur_motion, options.out);
+  sim::FlexionPictures pictures(model, output, motion.axis.axis, settings.image_angles_deg,
+                                options.out);
   StageMeter sweep_meter;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
       body, conditions, settings,
@@ -167,7 +199,7 @@ void run_flexion(const FlexionOptions& options)
         if (settings.images)
           pictures.keep(angle, x, ligament);
       },
-      &contact);
+      &contact, &steps);
   output.finish(sweep.angles);
   nlohmann::json sweep_figures = {{"success", sweep.success},
                                   {"angles_reached", sweep.angles.size()}};
@@ -183,6 +215,7 @@ void run_flexion(const FlexionOptions& options)
     entries.push_back(sim::angle_json(angle));
   results["angles"] = entries;
   results["unrelaxed_prestretch_energy_mj"] = sweep.unrelaxed_energy_mj;
+  results["initial_overlap"] = sweep.overlap.to_json();
   results["success"] = sweep.success;
   if (settings.mode == sim::FlexionMode::interactive)
     results["frames_per_second"] = sweep.frames_per_second;

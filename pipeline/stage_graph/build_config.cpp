@@ -175,6 +175,14 @@ const toml::table* table_at(const toml::table* parent, const char* key)
   return parent ? parent->get_as<toml::table>(key) : nullptr;
 }
 
+/// A path of the config, relative to the config's folder unless absolute ("" stays "").
+std::string relative_to(const fs::path& config_file, const std::string& text)
+{
+  if (text.empty() || fs::path(text).is_absolute())
+    return text;
+  return (config_file.parent_path() / text).string();
+}
+
 } // namespace
 
 BuildConfig load_build_config(const fs::path& file)
@@ -190,8 +198,8 @@ BuildConfig load_build_config(const fs::path& file)
 
   BuildConfig config;
   Section top(&root, "top level", file);
-  for (const char* name : {"input", "attachments", "voxelize", "centerline", "field", "tetmesh",
-                           "fibers", "model", "material", "flexion"})
+  for (const char* name : {"input", "anatomy", "attachments", "voxelize", "centerline", "field",
+                           "tetmesh", "fibers", "model", "material", "flexion"})
     top.allow(name);
   top.reject_unknown();
 
@@ -208,6 +216,16 @@ BuildConfig load_build_config(const fs::path& file)
     input.read_label(key, *target);
   input.reject_unknown();
 
+  read_section(&root, "anatomy", "anatomy", file, config.anatomy,
+               [](auto& p, auto&& v) { visit_anatomy(p, v); });
+  if (!config.anatomy.side.empty() && config.anatomy.side != "left" &&
+      config.anatomy.side != "right")
+    fail("{}: [anatomy] side must be \"left\" or \"right\", got \"{}\"", file.string(),
+         config.anatomy.side);
+  for (std::string* surface :
+       {&config.anatomy.medial_epicondyle_surface, &config.anatomy.lateral_epicondyle_surface})
+    *surface = relative_to(file, *surface);
+
   const toml::table* attachments = table_at(&root, "attachments");
   Section attachment_section(attachments, "attachments", file);
   attachment_section.allow("femur");
@@ -216,6 +234,8 @@ BuildConfig load_build_config(const fs::path& file)
   const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
   read_section(attachments, "femur", "attachments.femur", file, config.femur_attachment, rule);
   read_section(attachments, "tibia", "attachments.tibia", file, config.tibia_attachment, rule);
+  for (attachments::Rule* r : {&config.femur_attachment, &config.tibia_attachment})
+    r->patch = relative_to(file, r->patch);
 
   read_section(&root, "voxelize", "voxelize", file, config.voxelize,
                [](auto& p, auto&& v) { visit_voxelize(p, v); });
@@ -276,6 +296,11 @@ std::string path_text(const fs::path& path)
 nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
 {
   const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
+  if (stage == "anatomy") {
+    nlohmann::json anatomy = as_json(c.anatomy, [](auto& p, auto&& v) { visit_anatomy(p, v); });
+    anatomy["label_map_frame"] = !c.labels.empty();
+    return anatomy;
+  }
   if (stage == "attachments")
     return {{"femur", as_json(c.femur_attachment, rule)},
             {"tibia", as_json(c.tibia_attachment, rule)}};
@@ -309,8 +334,8 @@ nlohmann::json to_json(const BuildConfig& c)
       {"labels", path_text(c.labels)},      {"colour_table", path_text(c.colour_table)},
       {"ligament_label", c.ligament_label}, {"femur_label", c.femur_label},
       {"tibia_label", c.tibia_label}};
-  for (const char* stage :
-       {"attachments", "voxelize", "distance", "centerline", "field", "tetmesh", "fibers", "model"})
+  for (const char* stage : {"anatomy", "attachments", "voxelize", "distance", "centerline", "field",
+                            "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);
   return all;
 }

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -42,6 +43,19 @@ struct FlexionDefaults {
   Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitX();
 };
 
+/// What the config says of the knee's anatomy (written, with what the data adds, into
+/// anatomy.json). Directions of zero length and non-finite landmarks are "not given"; a landmark
+/// surface stands for its area-weighted centroid.
+struct AnatomyInputs {
+  std::string side; ///< "left", "right" or empty
+  Eigen::Vector3d proximal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d posterior = Eigen::Vector3d::Zero();
+  Eigen::Vector3d medial_epicondyle_mm = Eigen::Vector3d::Constant(NAN);
+  Eigen::Vector3d lateral_epicondyle_mm = Eigen::Vector3d::Constant(NAN);
+  std::string medial_epicondyle_surface; ///< a surface file (resolved against the config)
+  std::string lateral_epicondyle_surface;
+};
+
 struct BuildConfig {
   std::filesystem::path surface; ///< ligament surface (required)
   std::filesystem::path femur;   ///< optional
@@ -55,6 +69,7 @@ struct BuildConfig {
   std::filesystem::path labels;
   std::filesystem::path colour_table;
   std::string ligament_label, femur_label, tibia_label;
+  AnatomyInputs anatomy;
   attachments::Rule femur_attachment;
   attachments::Rule tibia_attachment;
   voxelize::Parameters voxelize;

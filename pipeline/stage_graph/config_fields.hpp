@@ -35,6 +35,25 @@ template <class Rule, class Visit> void visit_rule(Rule& r, Visit&& visit)
   visit("distance_mm", r.distance_mm);
   visit("end_length_mm", r.end_length_mm);
   visit("end", r.end);
+  visit("patch", r.patch);
+  visit("landmark", r.landmark);
+  visit("point_mm", r.point_mm);
+  visit("radius_mm", r.radius_mm);
+  visit("proximal_mm", r.proximal_mm);
+  visit("posterior_mm", r.posterior_mm);
+  visit("bone_distance_mm", r.bone_distance_mm);
+}
+
+/// The knee's side, directions and landmarks ([anatomy]).
+template <class P, class Visit> void visit_anatomy(P& p, Visit&& visit)
+{
+  visit("side", p.side);
+  visit("proximal", p.proximal);
+  visit("posterior", p.posterior);
+  visit("medial_epicondyle_mm", p.medial_epicondyle_mm);
+  visit("lateral_epicondyle_mm", p.lateral_epicondyle_mm);
+  visit("medial_epicondyle_surface", p.medial_epicondyle_surface);
+  visit("lateral_epicondyle_surface", p.lateral_epicondyle_surface);
 }
 
 template <class P, class Visit> void visit_voxelize(P& p, Visit&& visit)

@@ -8,6 +8,7 @@
 #include "stages/geometry/grid_vdb.hpp"
 #include "stages/geometry/grid_vti.hpp"
 #include "stages/geometry/surface_query.hpp"
+#include "stages/io/surface_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/tetmesh/tetmesh.hpp"
 #include "stages/voxelize/voxelize.hpp"
@@ -28,7 +29,9 @@ nlohmann::json area_json(const attachments::Area& area)
 {
   return {{"rule", area.rule},
           {"vertices", area.vertices.size()},
-          {"mean_mm", {area.mean.x(), area.mean.y(), area.mean.z()}}};
+          {"mean_mm", {area.mean.x(), area.mean.y(), area.mean.z()}},
+          {"area_mm2", area.area_mm2},
+          {"extent_mm", area.extent_mm}};
 }
 
 std::vector<bool> membership(const std::vector<int>& vertices, Eigen::Index count)
@@ -49,6 +52,18 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
   const auto tibia = load_bone(config.tibia);
   attachments::Inputs inputs{&ligament, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr,
                              std::move(arrays)};
+  std::optional<TriangleSurface> femur_patch, tibia_patch;
+  if (!config.femur_attachment.patch.empty())
+    femur_patch = io::read_surface(config.femur_attachment.patch);
+  if (!config.tibia_attachment.patch.empty())
+    tibia_patch = io::read_surface(config.tibia_attachment.patch);
+  inputs.femur_patch = femur_patch ? &*femur_patch : nullptr;
+  inputs.tibia_patch = tibia_patch ? &*tibia_patch : nullptr;
+  const KneeAnatomy anatomy = read_knee_anatomy(dir);
+  inputs.proximal = anatomy.proximal;
+  inputs.posterior = anatomy.posterior;
+  for (const auto& [name, landmark] : anatomy.landmarks)
+    inputs.landmarks[name] = landmark.point_mm;
   const attachments::Attachments found =
       attachments::find(inputs, config.femur_attachment, config.tibia_attachment);
 

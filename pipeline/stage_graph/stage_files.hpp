@@ -1,6 +1,7 @@
 #pragma once
 /// @brief What the build stages share: the names of their files and how to load their inputs.
 
+#include "common/knee_anatomy.hpp"
 #include "common/mesh.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "stages/geometry/grid.hpp"
@@ -16,6 +17,7 @@ namespace ligsim::pipeline {
 
 /// Output files of the stages, in the output folder.
 namespace files {
+inline constexpr const char* anatomy = "anatomy.json";
 inline constexpr const char* attachments = "attachments.vtp";
 inline constexpr const char* mask = "mask.vti";
 inline constexpr const char* mask_vdb = "surface.vdb"; ///< the level set, for Houdini/Blender
@@ -67,7 +69,11 @@ template <class T> nlohmann::json grid_json(const Grid<T>& grid)
           {"stored_mib", static_cast<double>(grid.memory_bytes()) / (1024.0 * 1024.0)}};
 }
 
+/// What the config and the data say of the knee: side, directions, landmarks.
+KneeAnatomy knee_anatomy(const BuildConfig& config);
+
 /// The stages' run functions (see stage_list.cpp for the graph).
+nlohmann::json run_anatomy(const BuildConfig& config, const std::filesystem::path& dir);
 nlohmann::json run_attachments(const BuildConfig& config, const std::filesystem::path& dir);
 nlohmann::json run_voxelize(const BuildConfig& config, const std::filesystem::path& dir);
 nlohmann::json run_distance(const BuildConfig& config, const std::filesystem::path& dir);

@@ -26,16 +26,46 @@ std::vector<fs::path> none(const BuildConfig&)
   return {};
 }
 
+/// The files the anatomy reads: landmark surfaces, and the bones (the proximal direction).
+std::vector<fs::path> anatomy_inputs(const BuildConfig& c)
+{
+  std::vector<fs::path> inputs;
+  for (const std::string& surface :
+       {c.anatomy.medial_epicondyle_surface, c.anatomy.lateral_epicondyle_surface})
+    if (!surface.empty())
+      inputs.emplace_back(surface);
+  for (const fs::path& bone : {c.femur, c.tibia})
+    if (!bone.empty())
+      inputs.push_back(bone);
+  return inputs;
+}
+
+/// The ligament, the bones and the footprint patches.
+std::vector<fs::path> attachment_inputs(const BuildConfig& c)
+{
+  std::vector<fs::path> inputs = ligament_and_bones(c);
+  for (const std::string& patch : {c.femur_attachment.patch, c.tibia_attachment.patch})
+    if (!patch.empty())
+      inputs.emplace_back(patch);
+  return inputs;
+}
+
 } // namespace
 
 const std::vector<Stage>& build_stages()
 {
   static const std::vector<Stage> stages = {
-      {"attachments",
-       "attachment areas A1 (femur) and A2 (tibia) on the ligament surface",
+      {"anatomy",
+       "the knee's side, anatomical directions and landmarks",
        {},
+       {files::anatomy},
+       anatomy_inputs,
+       run_anatomy},
+      {"attachments",
+       "attachment footprints A1 (femur) and A2 (tibia) on the ligament surface",
+       {"anatomy"},
        {files::attachments},
-       ligament_and_bones,
+       attachment_inputs,
        run_attachments},
       {"voxelize",
        "inside/outside voxel image of the ligament",

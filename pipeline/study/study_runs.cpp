@@ -67,11 +67,12 @@ FlexionFigures run_flexion(const sim::FlexionSettings& settings)
   FlexionFigures figures;
   const StageMeter meter;
   const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
-  const sim::ResolvedAxis axis = sim::resolve_flexion_axis(model, settings.axis);
+  const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   const sim::HyperelasticBody body(model.mesh, settings.material,
                                    sim::prestretched_fibers(model, settings.in_situ_strain));
   const sim::BoundaryConditions conditions =
-      sim::knee_conditions(model, axis.axis, settings.angles_deg.back());
+      sim::knee_conditions(model, sim::femur_rigid_motion(motion));
+  const sim::SweepSteps steps = sim::motion_steps(motion);
   figures.setup_s = meter.wall_s();
   figures.tets = static_cast<int>(body.element_count());
 
@@ -80,7 +81,8 @@ FlexionFigures run_flexion(const sim::FlexionSettings& settings)
     volumes[static_cast<std::size_t>(e)] = body.shape(e).V0;
   double measuring_s = 0.0;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
-      body, conditions, settings, [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+      body, conditions, settings,
+      [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<double> stretch(volumes.size());
         for (Eigen::Index e = 0; e < body.element_count(); ++e)
@@ -94,7 +96,8 @@ FlexionFigures run_flexion(const sim::FlexionSettings& settings)
         row.femur_force_n = angle.femur_force_n;
         figures.angles.push_back(row);
         measuring_s += seconds_since(start);
-      });
+      },
+      nullptr, &steps);
   figures.success = sweep.success;
   figures.failure = sweep.failure;
   figures.solve_s = sweep.wall_s - measuring_s;

@@ -48,6 +48,9 @@ ContactPotential::ContactPotential(int node_count, const ContactSurface& surface
   for (const ContactObstacle& obstacle : m_obstacles) {
     if (!obstacle.field)
       fail("contact: obstacle \"{}\" has no distance field", obstacle.name);
+    if (!(obstacle.start_offset_mm >= 0.0) || !std::isfinite(obstacle.start_offset_mm))
+      fail("contact: obstacle \"{}\" has a start offset of {} mm (must be >= 0)", obstacle.name,
+           obstacle.start_offset_mm);
     std::vector<bool> excluded(static_cast<std::size_t>(node_count), false);
     for (int n : obstacle.excluded_nodes)
       if (n >= 0 && n < node_count)
@@ -110,7 +113,7 @@ const DistanceSample& ContactPotential::pair_sample(std::size_t o, std::size_t i
 
 double ContactPotential::distance(std::size_t o, const Eigen::Vector3d& p, double t) const
 {
-  return m_obstacles[o].field->sample(pose(o, t).to_local(p), false).distance_mm;
+  return m_obstacles[o].field->sample(pose(o, t).to_local(p), false).distance_mm + offset(o, t);
 }
 
 template <class Visit>
@@ -118,13 +121,15 @@ bool ContactPotential::for_each_near_pair(const Eigen::VectorXd& x, double t, Vi
 {
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
+    const double off = offset(o, t);
     for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
       const Pair& pair = m_pairs[o][i];
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
+      // The near test is on the field itself: an offset (>= 0) only moves nodes farther.
       if (!maybe_near(o, i, p))
         continue;
       const DistanceSample& s = pair_sample(o, i, p);
-      if (!visit(pair, at, s, ipc_barrier(s.distance_mm, m_settings.d_hat_mm)))
+      if (!visit(pair, at, s, ipc_barrier(s.distance_mm + off, m_settings.d_hat_mm)))
         return false;
     }
   }
@@ -181,6 +186,7 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
   double bound = 1.0;
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
+    const double off = offset(o, t);
     const DistanceField& field = *m_obstacles[o].field;
     const double lipschitz = field.lipschitz();
     // A pair that is not near is at least d_hat + slack / 2 away.
@@ -197,7 +203,7 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
         continue;
       if (surely_farther(o, p0, length / closing_fraction))
         continue;
-      const double d0 = pair_sample(o, i, p0).distance_mm;
+      const double d0 = pair_sample(o, i, p0).distance_mm + off;
       const double keep = (1.0 - closing_fraction) * d0; // the gap never closes below this
       // Conservative advancement: a field with |grad| <= L lets the node move (d - keep) / L.
       double alpha = 0.0;
@@ -207,11 +213,11 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
         if (d - keep <= 1e-6 * d0) // no room left to move
           break;
         double next = std::min(bound, alpha + step);
-        double d_next = field.sample(p0 + next * move, false).distance_mm;
+        double d_next = field.sample(p0 + next * move, false).distance_mm + off;
         // The grid's slope may exceed L slightly: back off rather than overshoot.
         for (int halving = 0; d_next < keep && halving < 20; ++halving) {
           next = alpha + 0.5 * (next - alpha);
-          d_next = field.sample(p0 + next * move, false).distance_mm;
+          d_next = field.sample(p0 + next * move, false).distance_mm + off;
         }
         if (d_next < keep)
           break;
@@ -230,6 +236,7 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
   int moved = 0;
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
+    const double off = offset(o, t);
     const DistanceField& field = *m_obstacles[o].field;
     for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
       const Pair& pair = m_pairs[o][i];
@@ -237,17 +244,17 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
       if (!maybe_near(o, i, p))
         continue;
       DistanceSample s = pair_sample(o, i, p);
-      if (s.distance_mm > 0.0)
+      if (s.distance_mm + off > 0.0)
         continue;
-      // Newton on d(p) = pushed_gap d_hat along the gradient.
-      for (int k = 0; k < 10 && s.distance_mm < 0.5 * pushed_gap * d_hat; ++k) {
+      // Newton on d(p) + offset = pushed_gap d_hat along the gradient.
+      for (int k = 0; k < 10 && s.distance_mm + off < 0.5 * pushed_gap * d_hat; ++k) {
         const double slope2 = s.gradient.squaredNorm();
         if (!(slope2 > 1e-12))
           break; // deep inside, beyond the band: no direction out
-        p += (pushed_gap * d_hat - s.distance_mm) * s.gradient / slope2;
+        p += (pushed_gap * d_hat - s.distance_mm - off) * s.gradient / slope2;
         s = field.sample(p, false);
       }
-      if (s.distance_mm > 0.0) {
+      if (s.distance_mm + off > 0.0) {
         x.segment<3>(3 * pair.node) = at.rotation * p + at.shift;
         ++moved;
       }
@@ -267,6 +274,7 @@ ContactMeasures ContactPotential::measure(const Eigen::VectorXd& x, double t) co
   Eigen::VectorXd area = Eigen::VectorXd::Zero(m_node_count);
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
     const Pose at = pose(o, t);
+    const double off = offset(o, t);
     Eigen::Vector3d force = Eigen::Vector3d::Zero();
     double node_area = 0.0;
     std::vector<bool> active_node(static_cast<std::size_t>(m_node_count), false);
@@ -274,11 +282,12 @@ ContactMeasures ContactPotential::measure(const Eigen::VectorXd& x, double t) co
     int active = 0;
     for (int n = 0; n < m_node_count; ++n) {
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * n));
-      m.gap_mm(n) = std::min(m.gap_mm(n), m_obstacles[o].field->sample(p, false).distance_mm);
+      m.gap_mm(n) = std::min(m.gap_mm(n), m_obstacles[o].field->sample(p, false).distance_mm + off);
     }
     for (const Pair& pair : m_pairs[o]) {
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      const DistanceSample s = m_obstacles[o].field->sample(p, false);
+      DistanceSample s = m_obstacles[o].field->sample(p, false);
+      s.distance_mm += off;
       min_gap = std::min(min_gap, s.distance_mm);
       const BarrierValue b = ipc_barrier(s.distance_mm, d_hat);
       if (s.distance_mm >= d_hat)

@@ -30,6 +30,10 @@ struct ContactObstacle {
   const DistanceField* field = nullptr; ///< not owned
   std::optional<RigidMotion> motion;
   std::vector<int> excluded_nodes;
+  /// Added to the distance at load factor 0 and falling linearly to 0 at load factor 1: the
+  /// obstacle grows from shrunk by this much to its true surface (>= 0, mm). This is how nodes
+  /// that start inside it are pushed out gradually.
+  double start_offset_mm = 0.0;
 };
 
 /// Per node and per obstacle measures of a state.
@@ -64,7 +68,8 @@ public:
 
   const ContactSettings& settings() const { return m_settings; }
   const std::vector<ContactObstacle>& obstacles() const { return m_obstacles; }
-  /// The signed distance of point `p` (world, mm) to obstacle o at load factor t.
+  /// The signed distance of point `p` (world, mm) to obstacle o at load factor t (with its
+  /// offset).
   double distance(std::size_t o, const Eigen::Vector3d& p, double t) const;
 
 private:
@@ -89,6 +94,11 @@ private:
     DistanceSample sample; ///< at `sampled_at`, with the Hessian
   };
   Pose pose(std::size_t o, double t) const;
+  /// The distance added to obstacle o's field at load factor t (its start offset, ramped down).
+  double offset(std::size_t o, double t) const
+  {
+    return m_obstacles[o].start_offset_mm * (1.0 - t);
+  }
   /// Whether a node at local point p (rest frame of obstacle o) is surely farther than `far`.
   bool surely_farther(std::size_t o, const Eigen::Vector3d& p, double far) const;
   /// Whether pair i of obstacle o, now at local point p, may be within d_hat. A pair found

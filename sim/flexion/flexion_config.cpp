@@ -12,20 +12,64 @@ namespace {
 
 void read_axis(TomlTable& table, AxisSettings& axis)
 {
-  const std::string method =
-      table.text("method", axis.source == AxisSettings::Source::points ? "points" : "condyles");
+  const std::string method = table.text("method", to_string(axis.source));
   if (method == "points")
     axis.source = AxisSettings::Source::points;
   else if (method == "condyles")
     axis.source = AxisSettings::Source::condyles;
+  else if (method == "transepicondylar")
+    axis.source = AxisSettings::Source::transepicondylar;
   else
-    table.fail_at("method", "expected \"condyles\" or \"points\", got \"" + method + "\"");
+    table.fail_at("method", "expected \"condyles\", \"transepicondylar\" or \"points\", got \"" +
+                                method + "\"");
   axis.first_mm = table.vector3("first_mm", axis.first_mm);
   axis.second_mm = table.vector3("second_mm", axis.second_mm);
   axis.posterior = table.vector3("posterior", axis.posterior);
+  axis.medial_epicondyle_mm = table.vector3("medial_epicondyle_mm", axis.medial_epicondyle_mm);
+  axis.lateral_epicondyle_mm = table.vector3("lateral_epicondyle_mm", axis.lateral_epicondyle_mm);
   if (axis.source == AxisSettings::Source::points && !table.has("first_mm") &&
       !table.has("second_mm"))
     table.fail_at("method", "method \"points\" needs first_mm and second_mm");
+  table.reject_unknown_keys();
+}
+
+void read_anatomy(TomlTable& table, AnatomySettings& anatomy)
+{
+  anatomy.side = table.text("side", anatomy.side);
+  if (table.has("side") && anatomy.side != "left" && anatomy.side != "right")
+    table.fail_at("side", "expected \"left\" or \"right\", got \"" + anatomy.side + "\"");
+  anatomy.proximal = table.vector3("proximal", anatomy.proximal);
+  anatomy.posterior = table.vector3("posterior", anatomy.posterior);
+  table.reject_unknown_keys();
+}
+
+void read_motion(TomlTable& table, const fs::path& base, MotionSettings& motion)
+{
+  const std::string path = table.text("path", to_string(motion.path));
+  if (path == "auto")
+    motion.path = MotionSettings::Path::automatic;
+  else if (path == "pure")
+    motion.path = MotionSettings::Path::pure;
+  else if (path == "passive")
+    motion.path = MotionSettings::Path::passive;
+  else if (path == "table")
+    motion.path = MotionSettings::Path::table;
+  else
+    table.fail_at("path",
+                  "expected \"auto\", \"pure\", \"passive\" or \"table\", got \"" + path + "\"");
+  motion.coupled_translations = table.boolean("coupled_translations", motion.coupled_translations);
+  if (table.has("table"))
+    motion.table = base / table.text("table", "");
+  if (motion.path == MotionSettings::Path::table && motion.table.empty())
+    table.fail_at("path", "path \"table\" needs `table`, the CSV file");
+  table.reject_unknown_keys();
+}
+
+void read_ligament(TomlTable& table, LigamentSettings& ligament)
+{
+  ligament.name = table.text("name", ligament.name);
+  ligament.failure_strain = table.number("failure_strain", ligament.failure_strain);
+  ligament.failure_load_n = table.number("failure_load_n", ligament.failure_load_n);
   table.reject_unknown_keys();
 }
 
@@ -108,6 +152,12 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
     settings.image_angles_deg = root.numbers("image_angles_deg");
   if (auto axis = root.table("axis"))
     read_axis(*axis, settings.axis);
+  if (auto anatomy = root.table("anatomy"))
+    read_anatomy(*anatomy, settings.anatomy);
+  if (auto motion = root.table("motion"))
+    read_motion(*motion, base, settings.motion);
+  if (auto ligament = root.table("ligament"))
+    read_ligament(*ligament, settings.ligament);
   if (auto material = root.table("material"))
     read_material(*material, settings);
   if (auto quasi_static = root.table("static"))

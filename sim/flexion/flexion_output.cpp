@@ -22,6 +22,11 @@ std::string angle_label(double angle_deg)
   return fmt::format("{:g}", angle_deg);
 }
 
+std::string step_label(const AngleResult& angle)
+{
+  return std::isnan(angle.time_s) ? angle_label(angle.angle_deg) : "t" + angle_label(angle.time_s);
+}
+
 nlohmann::json angle_json(const AngleResult& angle)
 {
   nlohmann::json entry = {{"angle_deg", angle.angle_deg},
@@ -40,6 +45,8 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"wall_s", angle.wall_s}};
   if (angle.frame >= 0)
     entry["frame"] = angle.frame;
+  if (!std::isnan(angle.time_s))
+    entry["time_s"] = angle.time_s;
   if (!angle.contact.empty()) {
     nlohmann::json bones = nlohmann::json::object();
     for (const BoneContact& bone : angle.contact) {
@@ -56,29 +63,26 @@ nlohmann::json angle_json(const AngleResult& angle)
 }
 
 FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& model,
-                             const FlexionAxis& axis, fs::path directory)
+                             RigidMotion femur, fs::path directory)
     : m_body(body)
     , m_model(model)
-    , m_axis(axis)
+    , m_femur(std::move(femur))
     , m_directory(std::move(directory))
     , m_ligament(body, m_directory)
 {
   write_vtk(m_model.tibia, m_directory / "tibia.vtp");
 }
 
-vtkSmartPointer<vtkPolyData> FlexionOutput::turned_femur(double angle_deg) const
+vtkSmartPointer<vtkPolyData> FlexionOutput::moved_femur(double load_factor) const
 {
-  RigidMotion motion;
-  motion.axis = m_axis.direction;
-  motion.point_mm = m_axis.point_mm;
-  motion.angle_rad = angle_deg * M_PI / 180.0;
+  const Eigen::Isometry3d pose = m_femur.pose(load_factor);
   auto femur = vtkSmartPointer<vtkPolyData>::New();
   femur->DeepCopy(m_model.femur);
   vtkPoints* points = femur->GetPoints();
   for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p) {
     double xyz[3];
     points->GetPoint(p, xyz);
-    const Eigen::Vector3d turned = motion.apply(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), 1.0);
+    const Eigen::Vector3d turned = pose * Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
     points->SetPoint(p, turned.x(), turned.y(), turned.z());
   }
   return femur;
@@ -87,17 +91,19 @@ vtkSmartPointer<vtkPolyData> FlexionOutput::turned_femur(double angle_deg) const
 vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(const AngleResult& angle,
                                                                 const Eigen::VectorXd& x)
 {
-  const std::string label = angle_label(angle.angle_deg);
+  const std::string label = step_label(angle);
   const std::string ligament = "ligament_" + label + ".vtu";
   const std::string femur = "femur_" + label + ".vtp";
   PointArrays contact;
   if (angle.gap_mm.size() > 0)
     contact = {{"gap_mm", angle.gap_mm}, {"contact_pressure", angle.pressure_mpa}};
   auto grid = m_ligament.write(ligament, angle.angle_deg, x, contact);
-  write_vtk(turned_femur(angle.angle_deg), m_directory / femur);
-  m_series.push_back({angle.angle_deg, 0, ligament});
-  m_series.push_back({angle.angle_deg, 1, femur});
-  m_series.push_back({angle.angle_deg, 2, "tibia.vtp"});
+  write_vtk(moved_femur(angle.load_factor), m_directory / femur);
+  // ParaView's time: the angle, or the time of a motion in time.
+  const double time = std::isnan(angle.time_s) ? angle.angle_deg : angle.time_s;
+  m_series.push_back({time, 0, ligament});
+  m_series.push_back({time, 1, femur});
+  m_series.push_back({time, 2, "tibia.vtp"});
   return grid;
 }
 

@@ -18,13 +18,15 @@ namespace ligsim::sim {
 
 /// "45" for whole degrees, "22.5" otherwise: the angle in file names.
 std::string angle_label(double angle_deg);
+/// The step in file names: its angle, or "t" and its time for a motion in time.
+std::string step_label(const AngleResult& angle);
 
 /// One row of the sweep as JSON (summary.json's per-angle entries).
 nlohmann::json angle_json(const AngleResult& angle);
 
 class FlexionOutput {
 public:
-  FlexionOutput(const HyperelasticBody& body, const KneeModel& model, const FlexionAxis& axis,
+  FlexionOutput(const HyperelasticBody& body, const KneeModel& model, RigidMotion femur,
                 std::filesystem::path directory);
 
   /// Writes the angle's files; returns the ligament as written (for the pictures).
@@ -34,13 +36,13 @@ public:
   /// `angles`.
   void finish(const std::vector<AngleResult>& angles) const;
 
-  /// The femur surface turned by `angle_deg` about the axis.
-  vtkSmartPointer<vtkPolyData> turned_femur(double angle_deg) const;
+  /// The femur surface in its pose at load factor t.
+  vtkSmartPointer<vtkPolyData> moved_femur(double load_factor) const;
 
 private:
   const HyperelasticBody& m_body;
   const KneeModel& m_model;
-  FlexionAxis m_axis;
+  RigidMotion m_femur;
   std::filesystem::path m_directory;
   SceneOutput m_ligament;
   std::vector<PvdDataSet> m_series;

@@ -74,6 +74,7 @@ void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x,
   for (double wanted : m_angles)
     if (std::abs(wanted - angle.angle_deg) < 1e-9) {
       m_states[angle.angle_deg] = x;
+      m_load_factors[angle.angle_deg] = angle.load_factor;
       m_grids[angle.angle_deg] = ligament;
       std::vector<Eigen::Vector3d>& touching = m_contacts[angle.angle_deg];
       for (Eigen::Index n = 0; n < angle.pressure_mpa.size(); ++n)
@@ -97,7 +98,7 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
     const PictureCamera camera =
         sweep_camera(m_model, m_axis, m_states, picture.width, picture.height);
     for (const auto& [angle, grid] : m_grids) {
-      const vtkSmartPointer<vtkPolyData> femur = m_output.turned_femur(angle);
+      const vtkSmartPointer<vtkPolyData> femur = m_output.moved_femur(m_load_factors.at(angle));
       picture.ligament = grid;
       picture.bones = {femur, m_model.tibia};
       picture.caption = "flexion " + angle_label(angle) + " deg";

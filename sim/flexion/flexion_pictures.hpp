@@ -40,6 +40,7 @@ private:
   std::map<double, Eigen::VectorXd> m_states;
   std::map<double, vtkSmartPointer<vtkUnstructuredGrid>> m_grids;
   std::map<double, std::vector<Eigen::Vector3d>> m_contacts; ///< nodes touching a bone
+  std::map<double, double> m_load_factors;
 };
 
 } // namespace ligsim::sim

@@ -34,6 +34,15 @@ void validate(const FlexionSettings& settings)
     fail("flexion: the time step must be positive, got {} s", interactive.time_step_s);
   if (!(interactive.density_kg_m3 > 0.0) || !(interactive.mass_damping_per_s >= 0.0))
     fail("flexion: the density must be positive and the damping not negative");
+  if (!settings.anatomy.side.empty() && settings.anatomy.side != "left" &&
+      settings.anatomy.side != "right")
+    fail("flexion: [anatomy] side must be \"left\" or \"right\", got \"{}\"",
+         settings.anatomy.side);
+  if (settings.motion.path == MotionSettings::Path::table && settings.motion.table.empty())
+    fail("flexion: [motion] path = \"table\" needs `table`, the CSV file of the knee's "
+         "coordinates");
+  if (!(settings.ligament.failure_strain > 0.0) || !(settings.ligament.failure_load_n > 0.0))
+    fail("flexion: [ligament] failure_strain and failure_load_n must be positive");
   if (!settings.material.fiber)
     fail("flexion: the ligament material needs its fiber law");
   sim::validate(settings.material);
@@ -43,6 +52,34 @@ void validate(const FlexionSettings& settings)
 std::string to_string(FlexionMode mode)
 {
   return mode == FlexionMode::quasi_static ? "static" : "interactive";
+}
+
+std::string to_string(AxisSettings::Source source)
+{
+  switch (source) {
+  case AxisSettings::Source::condyles:
+    return "condyles";
+  case AxisSettings::Source::points:
+    return "points";
+  case AxisSettings::Source::transepicondylar:
+    return "transepicondylar";
+  }
+  return "?";
+}
+
+std::string to_string(MotionSettings::Path path)
+{
+  switch (path) {
+  case MotionSettings::Path::automatic:
+    return "auto";
+  case MotionSettings::Path::pure:
+    return "pure";
+  case MotionSettings::Path::passive:
+    return "passive";
+  case MotionSettings::Path::table:
+    return "table";
+  }
+  return "?";
 }
 
 } // namespace ligsim::sim

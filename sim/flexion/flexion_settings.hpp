@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,13 +27,46 @@ struct AxisSettings {
   enum class Source {
     condyles, ///< a cylinder fitted to the femur's posterior condyles (needs `posterior`)
     points,   ///< the line from `first_mm` to `second_mm`; positive angles turn right-handed
+    transepicondylar, ///< through the medial and lateral epicondyles
   };
   Source source = Source::condyles;
   Eigen::Vector3d first_mm = Eigen::Vector3d::Zero();
   Eigen::Vector3d second_mm = Eigen::Vector3d::Zero();
-  /// The posterior direction in the data's frame (zero: not given). It fixes the sign of the
-  /// fitted axis, so that positive angles flex the knee rather than hyperextend it.
+  /// The posterior direction in the data's frame (zero: the model's anatomy.json, if any). It
+  /// fixes the sign of the fitted axis, so that positive angles flex the knee.
   Eigen::Vector3d posterior = Eigen::Vector3d::Zero();
+  /// Transepicondylar: the epicondyles (non-finite: the model's landmarks), mm.
+  Eigen::Vector3d medial_epicondyle_mm = Eigen::Vector3d::Constant(NAN);
+  Eigen::Vector3d lateral_epicondyle_mm = Eigen::Vector3d::Constant(NAN);
+};
+
+/// What the flexion config says of the knee, over what the model's anatomy.json says.
+struct AnatomySettings {
+  std::string side;                                    ///< "left", "right" or empty
+  Eigen::Vector3d proximal = Eigen::Vector3d::Zero();  ///< zero: not given
+  Eigen::Vector3d posterior = Eigen::Vector3d::Zero(); ///< zero: not given
+};
+
+/// The knee's motion along the sweep.
+struct MotionSettings {
+  enum class Path {
+    automatic, ///< passive when the knee's side is known, else pure flexion (said on stderr)
+    pure,      ///< rotation about the flexion axis alone
+    passive,   ///< the passive knee's coupled tibial rotations (and translations if asked)
+    table,     ///< Grood & Suntay coordinates from a CSV file, per angle or per time
+  };
+  Path path = Path::automatic;
+  bool coupled_translations = false; ///< passive: the coupled tibial translations as well
+  std::filesystem::path table;       ///< the CSV file of `table`
+};
+
+/// The ligament the model is, and where it fails (plausibility warnings per angle).
+struct LigamentSettings {
+  std::string name = "MCL";
+  /// Human MCL failure strain, 17.1 +- 1.5 % (Quapp & Weiss, J Biomech Eng 1998;120:757).
+  double failure_strain = 0.171;
+  /// MCL load to failure, 799 +- 209 N (Wilson et al., J Orthop Sports Phys Ther 2012).
+  double failure_load_n = 799.0;
 };
 
 struct InteractiveSettings {
@@ -48,6 +82,9 @@ struct FlexionSettings {
   std::vector<double> angles_deg = {0, 15, 30, 45, 60, 75, 90};
   FlexionMode mode = FlexionMode::quasi_static;
   AxisSettings axis;
+  AnatomySettings anatomy;
+  MotionSettings motion;
+  LigamentSettings ligament;
   MaterialParameters material = mcl_material();
   /// Fiber pre-stretch of the reference state, sec. 2.7: |a| = 1 + in_situ_strain. It
   /// replaces the strain the model was built with.
@@ -66,5 +103,7 @@ struct FlexionSettings {
 void validate(const FlexionSettings& settings);
 
 std::string to_string(FlexionMode mode);
+std::string to_string(AxisSettings::Source source);
+std::string to_string(MotionSettings::Path path);
 
 } // namespace ligsim::sim

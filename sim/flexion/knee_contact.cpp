@@ -72,15 +72,51 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     obstacles.push_back({name, bone->grid.get(), bone->motion, attached});
     m_bones.push_back(std::move(bone));
   }
-  const ContactSurface surface = free_boundary_surface(model.mesh, conditions);
-  m_potential =
-      std::make_unique<ContactPotential>(node_count, surface, std::move(obstacles), config.barrier);
-  m_figures["surface_nodes"] = surface.nodes.size();
+  m_surface = free_boundary_surface(model.mesh, conditions);
+  m_node_count = node_count;
+  m_potential = std::make_unique<ContactPotential>(node_count, m_surface, std::move(obstacles),
+                                                   config.barrier);
+  m_figures["surface_nodes"] = m_surface.nodes.size();
   m_figures["voxel_mm"] = config.grid.voxel_mm;
   m_figures["band_mm"] = config.grid.band_mm;
 }
 
 KneeContact::~KneeContact() = default;
+
+std::vector<KneeContact::Gaps> KneeContact::gaps(const Eigen::VectorXd& x, double t) const
+{
+  const double d_hat = m_potential->settings().d_hat_mm;
+  std::vector<Gaps> result;
+  for (std::size_t b = 0; b < m_bones.size(); ++b) {
+    Gaps gaps;
+    gaps.bone = m_bones[b]->name;
+    for (int n : m_surface.nodes) {
+      if (m_bones[b]->bound[static_cast<std::size_t>(n)])
+        continue;
+      const double d = m_potential->distance(b, x.segment<3>(3 * n), t);
+      gaps.min_gap_mm = std::min(gaps.min_gap_mm, d);
+      if (d <= 0.0) {
+        ++gaps.inside;
+        gaps.inside_nodes.push_back(n);
+      }
+      gaps.within_d_hat += d < d_hat;
+    }
+    result.push_back(gaps);
+  }
+  return result;
+}
+
+std::unique_ptr<ContactPotential>
+KneeContact::resting_bones_shrunk_by(const std::vector<double>& start_offsets_mm) const
+{
+  std::vector<ContactObstacle> obstacles = m_potential->obstacles();
+  for (std::size_t b = 0; b < obstacles.size(); ++b) {
+    obstacles[b].motion.reset();
+    obstacles[b].start_offset_mm = b < start_offsets_mm.size() ? start_offsets_mm[b] : 0.0;
+  }
+  return std::make_unique<ContactPotential>(m_node_count, m_surface, std::move(obstacles),
+                                            m_potential->settings());
+}
 
 std::vector<BoneContact> KneeContact::measure(const Eigen::VectorXd& x, double t, bool forces,
                                               Eigen::VectorXd& gap_mm,

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -40,6 +41,22 @@ public:
   ~KneeContact();
 
   const ContactPotential& potential() const { return *m_potential; }
+
+  /// Per bone at positions x and load factor t: the smallest grid distance of a contact node
+  /// (negative: inside), the nodes inside and the nodes within d_hat.
+  struct Gaps {
+    std::string bone;
+    double min_gap_mm = INFINITY;
+    int inside = 0;
+    int within_d_hat = 0;
+    std::vector<int> inside_nodes;
+  };
+  std::vector<Gaps> gaps(const Eigen::VectorXd& x, double t) const;
+
+  /// The same barrier with the bones held in their rest pose, each grown from shrunk by
+  /// `start_offsets_mm` (one per bone, >= 0) at load factor 0 to its surface at load factor 1.
+  std::unique_ptr<ContactPotential>
+  resting_bones_shrunk_by(const std::vector<double>& start_offsets_mm) const;
   /// Per bone: grid voxels, memory, build or read time, open edges of the surface.
   const nlohmann::json& figures() const { return m_figures; }
 
@@ -53,6 +70,8 @@ private:
   struct Bone;
   std::vector<std::unique_ptr<Bone>> m_bones;
   std::unique_ptr<ContactPotential> m_potential;
+  ContactSurface m_surface;
+  int m_node_count = 0;
   nlohmann::json m_figures;
 };
 

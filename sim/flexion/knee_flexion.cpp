@@ -28,17 +28,6 @@ int set_index(const BoundaryConditions& conditions, const std::string& name)
   return -1;
 }
 
-/// The load factor of each angle: angle / last angle (all 0 when the last angle is 0).
-std::vector<double> load_factors(const std::vector<double>& angles_deg)
-{
-  std::vector<double> factors;
-  const double last = angles_deg.back();
-  for (double angle : angles_deg)
-    factors.push_back(last > 0.0 ? angle / last : 0.0);
-  factors.back() = last > 0.0 ? 1.0 : 0.0; // no round-off at the end
-  return factors;
-}
-
 /// Energy, fiber stretch, attachment forces and contact of state `x` at load factor t.
 void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
              const KneeContact* contact, bool contact_on, double t, const Eigen::VectorXd& x,
@@ -68,22 +57,27 @@ void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
 
 /// Equilibrium at each angle, each solve starting from the previous angle's state.
 SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                               const FlexionSettings& settings, const KneeContact* contact,
-                               Eigen::VectorXd& x, const AngleCallback& on_angle)
+                               const FlexionSettings& settings, const SweepSteps& steps,
+                               const KneeContact* contact, Eigen::VectorXd& x,
+                               const AngleCallback& on_angle)
 {
   SweepResult sweep;
   NewtonSettings newton = settings.newton;
-  newton.load_factors = load_factors(settings.angles_deg);
+  newton.load_factors = steps.load_factors;
   StaticSolver solver(body, conditions, newton);
   const bool contact_on = contact && settings.contact.enabled.value_or(true);
   if (contact_on)
     solver.set_extra_potential(&contact->potential());
-  Progress progress("flexion angles", settings.angles_deg.size());
+  Progress progress("flexion angles", steps.angles_deg.size());
   const StaticResult result =
       solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
                           const Eigen::VectorXd& residual) {
         AngleResult angle;
-        angle.angle_deg = settings.angles_deg[static_cast<std::size_t>(step.step) - 1];
+        const auto k = static_cast<std::size_t>(step.step) - 1;
+        angle.angle_deg = steps.angles_deg[k];
+        angle.load_factor = step.load_factor;
+        if (!steps.times_s.empty())
+          angle.time_s = steps.times_s[k];
         angle.converged = step.converged;
         angle.strain_energy_mj = step.strain_energy_mj;
         angle.newton_iterations = step.iterations;
@@ -101,7 +95,10 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
   if (!result.converged) {
     const std::size_t failed = result.steps.size() - 1;
     sweep.failure =
-        fmt::format("flexion to {} deg: {}", settings.angles_deg[failed], result.failure);
+        steps.times_s.empty()
+            ? fmt::format("flexion to {} deg: {}", steps.angles_deg[failed], result.failure)
+            : fmt::format("the knee's motion at {} s ({} deg): {}", steps.times_s[failed],
+                          steps.angles_deg[failed], result.failure);
   }
   return sweep;
 }
@@ -109,11 +106,12 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
 /// Implicit Euler frames while the femur turns at the set angular speed, from the equilibrium at
 /// 0 degrees; the angles of the sweep are recorded at the frames that reach them.
 SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                              const FlexionSettings& settings, const KneeContact* contact,
-                              Eigen::VectorXd& x, const AngleCallback& on_angle)
+                              const FlexionSettings& settings, const SweepSteps& steps,
+                              const KneeContact* contact, Eigen::VectorXd& x,
+                              const AngleCallback& on_angle)
 {
   const InteractiveSettings& interactive = settings.interactive;
-  const std::vector<double>& angles = settings.angles_deg;
+  const std::vector<double>& angles = steps.angles_deg;
   const double last = angles.back();
   const int frames =
       std::max(1, static_cast<int>(std::ceil(
@@ -121,11 +119,11 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
 
   // The pre-stretched ligament settles first, with the femur at 0 degrees.
   FlexionSettings start = settings;
-  start.angles_deg = {0.0};
   start.mode = FlexionMode::quasi_static;
   SweepResult sweep;
   const auto settle_start = std::chrono::steady_clock::now();
-  SweepResult settled = quasi_static_sweep(body, conditions, start, contact, x, {});
+  SweepResult settled =
+      quasi_static_sweep(body, conditions, start, angle_steps({0.0}), contact, x, {});
   if (!settled.success) {
     settled.failure = "settling at 0 deg before the interactive sweep: " + settled.failure;
     return settled;
@@ -176,6 +174,7 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
           return;
         AngleResult angle;
         angle.frame = frame.frame;
+        angle.load_factor = frame.load_factor;
         angle.converged = true;
         angle.strain_energy_mj = frame.strain_energy_mj;
         angle.newton_iterations = solves;
@@ -200,45 +199,39 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
 
 } // namespace
 
-ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& settings)
-{
-  ResolvedAxis resolved;
-  if (settings.source == AxisSettings::Source::points) {
-    const Eigen::Vector3d direction = settings.second_mm - settings.first_mm;
-    if (!direction.allFinite() || direction.norm() < 1e-9)
-      fail("flexion axis: the two points {} and {} coincide: the axis has zero length",
-           json_vector3(settings.first_mm).dump(), json_vector3(settings.second_mm).dump());
-    resolved.axis = {settings.first_mm, direction.normalized()};
-    resolved.method = "given as two points";
-    resolved.figures = {{"first_mm", json_vector3(settings.first_mm)},
-                        {"second_mm", json_vector3(settings.second_mm)}};
-    return resolved;
-  }
-  if (!settings.posterior.allFinite() || settings.posterior.norm() < 1e-12)
-    fail("flexion axis: fitting it to the femoral condyles needs the posterior direction of the "
-         "data (--posterior x,y,z or [axis] posterior), which makes positive angles flex the "
-         "knee; or give the axis as two points (--axis x1,y1,z1,x2,y2,z2)");
-  const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
-  const Eigen::Vector3d proximal = proximal_direction(model);
-  const CondyleAxisFit fit = fit_condyle_axis(femur, proximal, settings.posterior.normalized());
-  resolved.axis = fit.axis;
-  resolved.method = "cylinder fitted to the posterior femoral condyles";
-  resolved.figures = {{"radius_mm", fit.radius_mm},
-                      {"rms_residual_mm", fit.rms_residual_mm},
-                      {"points_used", fit.points_used},
-                      {"points_considered", fit.points_considered},
-                      {"proximal", json_vector3(proximal)},
-                      {"posterior_hint", json_vector3(settings.posterior.normalized())}};
-  return resolved;
-}
-
 FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain)
 {
   return model.fiber_directions * (1.0 + in_situ_strain);
 }
 
+SweepSteps angle_steps(const std::vector<double>& angles_deg)
+{
+  SweepSteps steps;
+  steps.angles_deg = angles_deg;
+  const double last = angles_deg.empty() ? 0.0 : angles_deg.back();
+  for (double angle : angles_deg)
+    steps.load_factors.push_back(last > 0.0 ? angle / last : 0.0);
+  if (!steps.load_factors.empty())
+    steps.load_factors.back() = last > 0.0 ? 1.0 : 0.0; // no round-off at the end
+  return steps;
+}
+
+SweepSteps motion_steps(const KneeMotion& motion)
+{
+  return {motion.angles_deg, motion.load_factors, motion.times_s};
+}
+
 BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& axis,
                                    double last_angle_deg)
+{
+  RigidMotion motion;
+  motion.axis = axis.direction.normalized();
+  motion.point_mm = axis.point_mm;
+  motion.angle_rad = last_angle_deg * degree;
+  return knee_conditions(model, motion);
+}
+
+BoundaryConditions knee_conditions(const KneeModel& model, const RigidMotion& femur_motion)
 {
   BoundaryConditions conditions;
   ConstraintSet tibia;
@@ -249,27 +242,42 @@ BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& ax
   ConstraintSet femur;
   femur.name = "femur";
   femur.nodes = model.femur_nodes;
-  RigidMotion motion;
-  motion.axis = axis.direction.normalized();
-  motion.point_mm = axis.point_mm;
-  motion.angle_rad = last_angle_deg * degree;
-  femur.rigid = motion;
+  femur.rigid = femur_motion;
   conditions.constraints.push_back(femur);
   return conditions;
 }
 
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
                               const FlexionSettings& settings, const AngleCallback& on_angle,
-                              const KneeContact* contact)
+                              const KneeContact* contact, const SweepSteps* given_steps)
 {
   validate(settings);
+  const SweepSteps steps = given_steps ? *given_steps : angle_steps(settings.angles_deg);
+  if (steps.angles_deg.empty() || steps.angles_deg.size() != steps.load_factors.size())
+    fail("flexion: {} angles for {} load factors", steps.angles_deg.size(),
+         steps.load_factors.size());
   const auto start = std::chrono::steady_clock::now();
   Eigen::VectorXd x = body.rest_positions();
   const double unrelaxed = body.energy(x).energy;
-  SweepResult sweep = settings.mode == FlexionMode::quasi_static
-                          ? quasi_static_sweep(body, conditions, settings, contact, x, on_angle)
-                          : interactive_sweep(body, conditions, settings, contact, x, on_angle);
+  OverlapReport overlap;
+  if (contact && settings.contact.enabled.value_or(true)) {
+    try {
+      overlap = resolve_initial_overlap(body, conditions, *contact, settings.newton, x);
+    } catch (const SolverError& e) {
+      SweepResult failed;
+      failed.failure = e.what();
+      failed.unrelaxed_energy_mj = unrelaxed;
+      return failed;
+    }
+  } else if (contact) {
+    overlap.before = contact->gaps(x, 0.0);
+  }
+  SweepResult sweep =
+      settings.mode == FlexionMode::quasi_static
+          ? quasi_static_sweep(body, conditions, settings, steps, contact, x, on_angle)
+          : interactive_sweep(body, conditions, settings, steps, contact, x, on_angle);
   sweep.unrelaxed_energy_mj = unrelaxed;
+  sweep.overlap = std::move(overlap);
   sweep.wall_s = seconds_since(start);
   return sweep;
 }

@@ -6,42 +6,49 @@
 
 #include "sim/flexion/axis/condyle_axis.hpp"
 #include "sim/flexion/flexion_settings.hpp"
+#include "sim/flexion/initial_overlap.hpp"
 #include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_model.hpp"
+#include "sim/flexion/knee_motion.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace ligsim::sim {
 
-/// The flexion axis a sweep uses and how it was found.
-struct ResolvedAxis {
-  FlexionAxis axis;
-  std::string method;
-  nlohmann::json figures; ///< the fit's radius and residual, or the given points
-};
-
-/// The axis from two points, or fitted to the femur's posterior condyles (InputError when the
-/// points coincide, or the posterior direction is missing for a fit).
-ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& settings);
-
 /// Fiber vectors with the in-situ pre-stretch: unit direction times (1 + in_situ_strain).
 FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain);
 
-/// Constraint set "tibia" held fixed, set "femur" turned about `axis` by `last_angle_deg` at load
-/// factor 1.
+/// Constraint set "tibia" held fixed, set "femur" moved by `femur`.
+BoundaryConditions knee_conditions(const KneeModel& model, const RigidMotion& femur);
+/// The same with the femur turned about `axis` by `last_angle_deg` at load factor 1.
 BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& axis,
                                    double last_angle_deg);
+
+/// The steps of a sweep: per step the flexion angle, the load factor and, for a motion in time,
+/// the time (else empty).
+struct SweepSteps {
+  std::vector<double> angles_deg;
+  std::vector<double> load_factors;
+  std::vector<double> times_s;
+};
+/// Steps at the angles, load factor = angle / last angle.
+SweepSteps angle_steps(const std::vector<double>& angles_deg);
+/// The steps of a resolved knee motion.
+SweepSteps motion_steps(const KneeMotion& motion);
 
 /// The state at one angle of the sweep.
 struct AngleResult {
   double angle_deg = 0.0;
+  double load_factor = 0.0;
+  double time_s = NAN; ///< a motion in time: the step's time
   bool converged = false;
   double strain_energy_mj = 0.0;
   double max_fiber_stretch = 0.0;  ///< |F a|, with the in-situ pre-stretch
@@ -66,6 +73,7 @@ struct SweepResult {
   std::string failure;
   std::vector<AngleResult> angles;
   double unrelaxed_energy_mj = 0.0; ///< the pre-stretched model before any equilibrium
+  OverlapReport overlap;            ///< the ligament's overlap with the bones, and its push
   double wall_s = 0.0;
   // Interactive mode only.
   int frames = 0;
@@ -76,12 +84,13 @@ struct SweepResult {
 /// Called for each angle reached, with the positions (flat, mm).
 using AngleCallback = std::function<void(const AngleResult&, const Eigen::VectorXd& x)>;
 
-/// Sweeps the angles of `settings` (in `conditions`, load factor = angle / last angle), with
-/// ligament-bone contact when `contact` is given and settings.contact does not turn it off (then
-/// `contact` only measures gaps and penetration). Never throws on divergence: the result says
-/// where it stopped.
+/// Sweeps `steps` (default: the angles of `settings`, load factor = angle / last angle) in
+/// `conditions`, with ligament-bone contact when `contact` is given and settings.contact does not
+/// turn it off (then `contact` only measures gaps and penetration). Never throws on divergence:
+/// the result says where it stopped.
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
                               const FlexionSettings& settings, const AngleCallback& on_angle,
-                              const KneeContact* contact = nullptr);
+                              const KneeContact* contact = nullptr,
+                              const SweepSteps* steps = nullptr);
 
 } // namespace ligsim::sim

@@ -128,6 +128,7 @@ KneeModel load_knee_model(const fs::path& dir)
 
   model.femur = bone_surface(dir, "femur.vtp", "femur");
   model.tibia = bone_surface(dir, "tibia.vtp", "tibia");
+  model.anatomy = read_knee_anatomy(dir);
   return model;
 }
 

@@ -3,6 +3,7 @@
 /// tets with per-tet fiber directions and attachment flags (model.vtu), the femur and tibia
 /// surfaces (femur.vtp, tibia.vtp).
 
+#include "common/knee_anatomy.hpp"
 #include "common/mesh.hpp"
 
 #include <Eigen/Core>
@@ -22,6 +23,7 @@ struct KneeModel {
   std::vector<int> tibia_nodes;      ///< stay with the (fixed) tibia
   vtkSmartPointer<vtkPolyData> femur;
   vtkSmartPointer<vtkPolyData> tibia;
+  KneeAnatomy anatomy; ///< anatomy.json of the folder (empty for models built without it)
 };
 
 /// Reads the model folder. Throws InputError naming the file and what is missing: the folder,

@@ -326,7 +326,7 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
       contact =
           std::make_unique<KneeContact>(knee, conditions, settings.contact, loaded.dir / "contact");
     ensure_directory(directory);
-    FlexionOutput output(body, knee, loaded.axis.axis, directory);
+    FlexionOutput output(body, knee, *conditions.constraints.back().rigid, directory);
     const bool quasi_static = settings.mode == FlexionMode::quasi_static;
     const double last = settings.angles_deg.back();
     const SweepResult sweep = run_flexion_sweep(

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <tuple>
 
 namespace ligsim::attachments {
 
@@ -73,6 +74,66 @@ Area from_proximity(const Rule& rule, const Inputs& inputs, Bone bone)
   return area;
 }
 
+Area from_patch(const Rule& rule, const Inputs& inputs, Bone bone)
+{
+  const TriangleSurface* patch = bone == Bone::femur ? inputs.femur_patch : inputs.tibia_patch;
+  if (patch == nullptr || patch->F.rows() == 0)
+    fail("{} attachment: rule 'patch' needs the footprint surface (`patch`)", name_of(bone));
+  if (!(rule.distance_mm > 0.0))
+    fail("{} attachment: patch distance must be positive, got {} mm", name_of(bone),
+         rule.distance_mm);
+  const SurfaceQuery query(*patch);
+  Area area;
+  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v)
+    if (query.distance(inputs.ligament->V.row(v).transpose()) <= rule.distance_mm)
+      area.vertices.push_back(static_cast<int>(v));
+  area.rule = fmt::format("patch: within {} mm of {}", rule.distance_mm,
+                          rule.patch.empty() ? "the footprint surface" : rule.patch);
+  return area;
+}
+
+Area from_landmark(const Rule& rule, const Inputs& inputs, Bone bone)
+{
+  Eigen::Vector3d centre = rule.point_mm;
+  std::string what = "the given point";
+  if (!rule.landmark.empty()) {
+    const auto found = inputs.landmarks.find(rule.landmark);
+    if (found == inputs.landmarks.end()) {
+      std::string known;
+      for (const auto& [name, point] : inputs.landmarks)
+        known += (known.empty() ? "" : ", ") + name;
+      fail("{} attachment: no landmark '{}' in the anatomy (known: {})", name_of(bone),
+           rule.landmark, known.empty() ? "none" : known);
+    }
+    centre = found->second;
+    what = "landmark " + rule.landmark;
+  }
+  for (const auto& [offset, direction, name] :
+       {std::tuple{rule.proximal_mm, inputs.proximal, "proximal"},
+        std::tuple{rule.posterior_mm, inputs.posterior, "posterior"}}) {
+    if (offset == 0.0)
+      continue;
+    if (!direction)
+      fail("{} attachment: an offset {} of the landmark needs the knee's {} direction ([anatomy] "
+           "{}, or a label map's frame)",
+           name_of(bone), name, name, name);
+    centre += offset * *direction;
+    what += fmt::format(" moved {} mm {}", offset, name);
+  }
+  if (!centre.allFinite())
+    fail("{} attachment: rule 'landmark' needs `landmark` (a name) or `point_mm`", name_of(bone));
+  if (!(rule.radius_mm > 0.0))
+    fail("{} attachment: landmark radius must be positive, got {} mm", name_of(bone),
+         rule.radius_mm);
+  Area area;
+  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v)
+    if ((inputs.ligament->V.row(v).transpose() - centre).norm() <= rule.radius_mm)
+      area.vertices.push_back(static_cast<int>(v));
+  area.rule = fmt::format("landmark: within {} mm of {} ({:.2f}, {:.2f}, {:.2f})", rule.radius_mm,
+                          what, centre.x(), centre.y(), centre.z());
+  return area;
+}
+
 Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* other)
 {
   if (!(rule.end_length_mm > 0.0))
@@ -84,11 +145,22 @@ Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* oth
   const double lo = s.minCoeff(), hi = s.maxCoeff();
   bool at_max;
   std::string why;
-  if (rule.end == "min" || rule.end == "max") {
-    at_max = rule.end == "max";
-    why = rule.end;
-  } else if (rule.end != "auto") {
-    fail("{} attachment: end must be 'min', 'max' or 'auto', got '{}'", name_of(bone), rule.end);
+  std::string end = rule.end;
+  if (end == "auto" && inputs.proximal)
+    end = bone == Bone::femur ? "proximal" : "distal";
+  if (end == "proximal" || end == "distal") {
+    if (!inputs.proximal)
+      fail("{} attachment: end '{}' needs the knee's proximal direction ([anatomy] proximal, a "
+           "label map's frame, or both bones)",
+           name_of(bone), end);
+    at_max = (axis.dot(*inputs.proximal) > 0.0) == (end == "proximal");
+    why = end + " end";
+  } else if (end == "min" || end == "max") {
+    at_max = end == "max";
+    why = end;
+  } else if (end != "auto") {
+    fail("{} attachment: end must be 'proximal', 'distal', 'min', 'max' or 'auto', got '{}'",
+         name_of(bone), end);
   } else if (other != nullptr && !other->vertices.empty()) {
     const double other_s = other->mean.dot(axis);
     at_max = (hi - other_s) > (other_s - lo);
@@ -108,6 +180,22 @@ Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* oth
   return area;
 }
 
+/// Keeps the vertices within `rule.bone_distance_mm` of the bone, when both are given.
+void keep_next_to_bone(Area& area, const Rule& rule, const Inputs& inputs, Bone bone)
+{
+  const TriangleSurface* surface = bone == Bone::femur ? inputs.femur : inputs.tibia;
+  if (!(rule.bone_distance_mm > 0.0) || surface == nullptr)
+    return;
+  const SurfaceQuery query(*surface);
+  std::vector<int> kept;
+  for (int v : area.vertices)
+    if (query.distance(inputs.ligament->V.row(v).transpose()) <= rule.bone_distance_mm)
+      kept.push_back(v);
+  area.vertices = std::move(kept);
+  area.rule += fmt::format(", within {} mm of the {}", rule.bone_distance_mm,
+                           bone == Bone::femur ? "femur" : "tibia");
+}
+
 void finish(Area& area, const TriangleSurface& ligament, Bone bone)
 {
   std::sort(area.vertices.begin(), area.vertices.end());
@@ -118,6 +206,27 @@ void finish(Area& area, const TriangleSurface& ligament, Bone bone)
   for (int v : area.vertices)
     area.mean += ligament.V.row(v).transpose();
   area.mean /= static_cast<double>(area.vertices.size());
+  std::vector<char> in(static_cast<std::size_t>(ligament.V.rows()), 0);
+  for (int v : area.vertices)
+    in[static_cast<std::size_t>(v)] = 1;
+  area.area_mm2 = 0.0;
+  for (Eigen::Index f = 0; f < ligament.F.rows(); ++f) {
+    int corners = 0;
+    for (int k = 0; k < 3; ++k)
+      corners += in[static_cast<std::size_t>(ligament.F(f, k))];
+    if (corners == 0)
+      continue;
+    const Eigen::Vector3d a = ligament.V.row(ligament.F(f, 0));
+    const Eigen::Vector3d b = ligament.V.row(ligament.F(f, 1));
+    const Eigen::Vector3d c = ligament.V.row(ligament.F(f, 2));
+    area.area_mm2 += corners / 3.0 * 0.5 * (b - a).cross(c - a).norm();
+  }
+  area.extent_mm = 0.0;
+  for (std::size_t i = 0; i < area.vertices.size(); ++i)
+    for (std::size_t j = i + 1; j < area.vertices.size(); ++j)
+      area.extent_mm =
+          std::max(area.extent_mm,
+                   (ligament.V.row(area.vertices[i]) - ligament.V.row(area.vertices[j])).norm());
 }
 
 } // namespace
@@ -146,15 +255,27 @@ Attachments find(const Inputs& inputs, const Rule& femur_rule, const Rule& tibia
       return from_array(rule, inputs, bone);
     if (kind == "proximity")
       return from_proximity(rule, inputs, bone);
+    if (kind == "patch")
+      return from_patch(rule, inputs, bone);
+    if (kind == "landmark")
+      return from_landmark(rule, inputs, bone);
     if (kind == "end")
       return std::nullopt;
-    fail("{} attachment: unknown rule '{}' (use auto, indices, array, proximity or end)",
+    fail("{} attachment: unknown rule '{}' (use auto, indices, array, proximity, patch, landmark "
+         "or end)",
          name_of(bone), kind);
+  };
+  const auto near_bone = [&](std::optional<Area>& area, const std::string& kind, const Rule& rule,
+                             Bone bone) {
+    if (area && kind != "indices" && kind != "array")
+      keep_next_to_bone(*area, rule, inputs, bone);
   };
 
   Attachments result;
   std::optional<Area> femur = direct(femur_kind, femur_rule, Bone::femur);
   std::optional<Area> tibia = direct(tibia_kind, tibia_rule, Bone::tibia);
+  near_bone(femur, femur_kind, femur_rule, Bone::femur);
+  near_bone(tibia, tibia_kind, tibia_rule, Bone::tibia);
   if (femur)
     finish(*femur, *inputs.ligament, Bone::femur);
   if (tibia)
@@ -162,10 +283,12 @@ Attachments find(const Inputs& inputs, const Rule& femur_rule, const Rule& tibia
   // End rules last: "auto" ends look away from the other area when it is known.
   if (!tibia) {
     tibia = from_end(tibia_rule, inputs, Bone::tibia, femur ? &*femur : nullptr);
+    near_bone(tibia, tibia_kind, tibia_rule, Bone::tibia);
     finish(*tibia, *inputs.ligament, Bone::tibia);
   }
   if (!femur) {
     femur = from_end(femur_rule, inputs, Bone::femur, &*tibia);
+    near_bone(femur, femur_kind, femur_rule, Bone::femur);
     finish(*femur, *inputs.ligament, Bone::femur);
   }
 

@@ -107,13 +107,13 @@ TEST(BuildBadInput, EmptyAttachmentArea)
 {
   expect_clean_failure("build --surface " + kMcl + " --tibia " + kTibia +
                            " --attach-distance 0.0001",
-                       fresh_folder("empty"), "attachment area is empty");
+                       fresh_folder("empty"), "attachment area is empty", {"anatomy.json"});
 }
 
 TEST(BuildBadInput, OverlappingAttachmentAreas)
 {
   expect_clean_failure("build --surface " + kMcl + " --femur-indices 1,2,3 --tibia-indices 3,4",
-                       fresh_folder("overlap"), "overlap");
+                       fresh_folder("overlap"), "overlap", {"anatomy.json"});
 }
 
 TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
@@ -133,9 +133,10 @@ TEST(BuildBadInput, AttachmentsTheCenterlineCannotConnect)
              std::to_string(o + f[2]) + "\n";
   }
   const fs::path file = write_text("ligsim_two_boxes.obj", obj);
-  expect_clean_failure(
-      "centerline --surface " + file.string(), fresh_folder("unconnected"), "cannot be connected",
-      {"attachments.vtp", "mask.vti", "surface.vdb", "distance.vti", "distance.vdb"});
+  expect_clean_failure("centerline --surface " + file.string(), fresh_folder("unconnected"),
+                       "cannot be connected",
+                       {"anatomy.json", "attachments.vtp", "mask.vti", "surface.vdb",
+                        "distance.vti", "distance.vdb"});
 }
 
 TEST(BuildBadInput, ConfigWithUnknownKey)

@@ -1,0 +1,99 @@
+#include "sim/flexion/initial_overlap.hpp"
+
+#include "common/error.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <algorithm>
+
+namespace ligsim::sim {
+
+namespace {
+
+nlohmann::json gaps_json(const std::vector<KneeContact::Gaps>& gaps)
+{
+  nlohmann::json json = nlohmann::json::object();
+  for (const KneeContact::Gaps& g : gaps)
+    json[g.bone] = {{"min_gap_mm", g.min_gap_mm},
+                    {"nodes_inside", g.inside},
+                    {"nodes_within_d_hat", g.within_d_hat}};
+  return json;
+}
+
+/// The same node sets, each held where it is.
+BoundaryConditions held_in_place(const BoundaryConditions& conditions)
+{
+  BoundaryConditions held = conditions;
+  for (ConstraintSet& set : held.constraints) {
+    set.rigid.reset();
+    set.components = {true, true, true};
+    set.displacement_mm.setZero();
+  }
+  held.loads.clear();
+  return held;
+}
+
+} // namespace
+
+nlohmann::json OverlapReport::to_json() const
+{
+  nlohmann::json json = {{"pushed", pushed}, {"before", gaps_json(before)}};
+  if (pushed)
+    json.update({{"after", gaps_json(after)},
+                 {"start_offsets_mm", start_offsets_mm},
+                 {"max_node_move_mm", max_node_move_mm},
+                 {"mean_move_of_nodes_inside_mm", mean_surface_move_mm},
+                 {"newton_iterations", newton_iterations},
+                 {"method", "bones held at rest and grown from shrunk back to their surfaces "
+                            "while the ligament settles (contact barrier)"}});
+  return json;
+}
+
+OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
+                                      const BoundaryConditions& conditions,
+                                      const KneeContact& contact, const NewtonSettings& newton,
+                                      Eigen::VectorXd& x)
+{
+  OverlapReport report;
+  report.before = contact.gaps(x, 0.0);
+  const double d_hat = contact.potential().settings().d_hat_mm;
+  bool any_inside = false;
+  for (const KneeContact::Gaps& g : report.before) {
+    any_inside = any_inside || g.inside > 0;
+    report.start_offsets_mm.push_back(g.inside > 0 ? -g.min_gap_mm + 0.5 * d_hat : 0.0);
+  }
+  if (!any_inside)
+    return report;
+
+  // The nodes that start inside, to say how far they moved.
+  std::vector<int> inside;
+  for (const KneeContact::Gaps& g : report.before)
+    inside.insert(inside.end(), g.inside_nodes.begin(), g.inside_nodes.end());
+
+  const std::unique_ptr<ContactPotential> growing =
+      contact.resting_bones_shrunk_by(report.start_offsets_mm);
+  NewtonSettings settings = newton;
+  settings.load_factors = {0.25, 0.5, 0.75, 1.0};
+  StaticSolver solver(body, held_in_place(conditions), settings);
+  solver.set_extra_potential(growing.get());
+  const Eigen::VectorXd start = x;
+  const StaticResult result = solver.solve(x);
+  if (!result.converged)
+    fail<SolverError>(
+        "pushing the ligament's nodes out of the bones they overlap as segmented "
+        "(up to {:.3g} mm deep): {}",
+        *std::max_element(report.start_offsets_mm.begin(), report.start_offsets_mm.end()) -
+            0.5 * d_hat,
+        result.failure);
+  report.pushed = true;
+  report.newton_iterations = result.newton_iterations;
+  report.after = contact.gaps(x, 0.0);
+  for (Eigen::Index n = 0; n < x.size() / 3; ++n)
+    report.max_node_move_mm =
+        std::max(report.max_node_move_mm, (x.segment<3>(3 * n) - start.segment<3>(3 * n)).norm());
+  for (int n : inside)
+    report.mean_surface_move_mm += (x.segment<3>(3 * n) - start.segment<3>(3 * n)).norm();
+  report.mean_surface_move_mm /= static_cast<double>(inside.size());
+  return report;
+}
+
+} // namespace ligsim::sim

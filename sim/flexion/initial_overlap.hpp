@@ -1,0 +1,41 @@
+#pragma once
+/// @brief A segmented ligament touches or slightly overlaps its bones as segmented: before the
+/// knee moves, the nodes inside a bone are pushed out. The bones are held in their rest pose
+/// and grown from shrunk (by the deepest overlap plus half of d_hat) back to their surfaces while
+/// the pre-stretched ligament settles in equilibrium with them, so no node is moved alone and no
+/// element is inverted by a jump.
+
+#include "sim/flexion/flexion_settings.hpp"
+#include "sim/flexion/knee_contact.hpp"
+#include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct OverlapReport {
+  std::vector<KneeContact::Gaps> before; ///< per bone, at the segmented shape
+  std::vector<KneeContact::Gaps> after;  ///< per bone, after the push (empty if none was needed)
+  bool pushed = false;
+  std::vector<double> start_offsets_mm; ///< how far each bone was shrunk to start
+  double max_node_move_mm = 0.0;        ///< largest displacement of a node by the push
+  double mean_surface_move_mm = 0.0;    ///< mean displacement of the nodes that started inside
+  int newton_iterations = 0;
+
+  nlohmann::json to_json() const;
+};
+
+/// Resolves the overlap of the state `x` (flat positions, mm) with the bones of `contact`, in
+/// place. Does nothing (pushed = false) when no free node is inside a bone. Throws SolverError
+/// naming the bone when the push does not converge.
+OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
+                                      const BoundaryConditions& conditions,
+                                      const KneeContact& contact, const NewtonSettings& newton,
+                                      Eigen::VectorXd& x);
+
+} // namespace ligsim::sim
