@@ -9,6 +9,7 @@
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/flexion_pictures.hpp"
 #include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/plausibility.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
 
 #include <CLI/CLI.hpp>
@@ -135,6 +136,23 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
                                  {"linear_solver", to_string(settings.interactive.linear_solver)}};
 }
 
+/// Each footprint's area, beside the published one, and its reach from the flexion axis.
+void log_footprints(const std::vector<sim::Footprint>& prints, const std::string& ligament)
+{
+  for (const sim::Footprint& print : prints) {
+    std::string published;
+    if (const auto area = sim::published_footprint_area(ligament, print.bone))
+      published = area->sd_mm2 > 0.0
+                      ? fmt::format(" (published {:.0f} +- {:.0f} mm^2, {})", area->mean_mm2,
+                                    area->sd_mm2, area->source)
+                      : fmt::format(" (published {:.0f} mm^2, {})", area->mean_mm2, area->source);
+    log_info(fmt::format("{} footprint: {} nodes, {:.0f} mm^2{}, up to {:.1f} mm from the "
+                         "flexion axis (mean {:.1f})",
+                         print.bone, print.nodes, print.area_mm2, published,
+                         print.max_axis_distance_mm, print.mean_axis_distance_mm));
+  }
+}
+
 /// The axis, the other anatomical axis and the path, one line each on stderr.
 void log_motion(const sim::KneeMotion& motion)
 {
@@ -172,6 +190,12 @@ void run_flexion(const FlexionOptions& options)
   const sim::RigidMotion femur_motion = sim::femur_rigid_motion(motion);
   const sim::BoundaryConditions conditions = sim::knee_conditions(model, femur_motion);
   const sim::SweepSteps steps = sim::motion_steps(motion);
+  std::optional<sim::EmbeddedPolyline> centerline;
+  if (model.centerline.rows() >= 2)
+    centerline.emplace(model.mesh, model.centerline);
+  sim::PlausibilityContext plausibility{settings.ligament, sim::footprints(model, motion.axis.axis),
+                                        settings.in_situ_strain, 0.0};
+  log_footprints(plausibility.footprints, settings.ligament.name);
   // Built with contact off as well: it measures how deep the ligament goes into the bones.
   const sim::KneeContact contact(model, conditions, settings.contact,
                                  settings.model_dir / "contact");
@@ -192,14 +216,20 @@ void run_flexion(const FlexionOptions& options)
   sim::FlexionPictures pictures(model, output, motion.axis.axis, settings.image_angles_deg,
                                 options.out);
   StageMeter sweep_meter;
+  nlohmann::json warnings = nlohmann::json::array();
   const sim::SweepResult sweep = sim::run_flexion_sweep(
       body, conditions, settings,
       [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+        for (const std::string& warning : sim::plausibility_warnings(angle, plausibility)) {
+          log_info(
+              fmt::format("warning at {} deg: {}", sim::angle_label(angle.angle_deg), warning));
+          warnings.push_back({{"angle_deg", angle.angle_deg}, {"warning", warning}});
+        }
         const auto ligament = output.write_angle(angle, x);
         if (settings.images)
           pictures.keep(angle, x, ligament);
       },
-      &contact, &steps);
+      &contact, &steps, centerline ? &*centerline : nullptr);
   output.finish(sweep.angles);
   nlohmann::json sweep_figures = {{"success", sweep.success},
                                   {"angles_reached", sweep.angles.size()}};
@@ -216,6 +246,11 @@ void run_flexion(const FlexionOptions& options)
   results["angles"] = entries;
   results["unrelaxed_prestretch_energy_mj"] = sweep.unrelaxed_energy_mj;
   results["initial_overlap"] = sweep.overlap.to_json();
+  results["footprints"] = sim::footprints_json(plausibility.footprints, settings.ligament.name);
+  results["plausibility"] = {{"ligament", settings.ligament.name},
+                             {"failure_strain", settings.ligament.failure_strain},
+                             {"failure_load_n", settings.ligament.failure_load_n},
+                             {"warnings", warnings}};
   results["success"] = sweep.success;
   if (settings.mode == sim::FlexionMode::interactive)
     results["frames_per_second"] = sweep.frames_per_second;

@@ -34,6 +34,9 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"strain_energy_mj", angle.strain_energy_mj},
                           {"max_fiber_stretch", angle.max_fiber_stretch},
                           {"mean_fiber_stretch", angle.mean_fiber_stretch},
+                          {"max_fiber_strain", angle.max_fiber_stretch - 1.0},
+                          {"mean_fiber_strain", angle.mean_fiber_stretch - 1.0},
+                          {"volume_beyond_failure_strain", angle.failed_volume_fraction},
                           {"femur_force_n", json_vector3(angle.femur_force_n)},
                           {"femur_force_magnitude_n", angle.femur_force_n.norm()},
                           {"tibia_force_n", json_vector3(angle.tibia_force_n)},
@@ -47,6 +50,10 @@ nlohmann::json angle_json(const AngleResult& angle)
     entry["frame"] = angle.frame;
   if (!std::isnan(angle.time_s))
     entry["time_s"] = angle.time_s;
+  if (!std::isnan(angle.length_mm))
+    entry.update({{"length_mm", angle.length_mm},
+                  {"length_change_mm", angle.length_change_mm},
+                  {"length_change_pct", angle.length_change_pct}});
   if (!angle.contact.empty()) {
     nlohmann::json bones = nlohmann::json::object();
     for (const BoneContact& bone : angle.contact) {
@@ -114,7 +121,8 @@ void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
   std::string csv = "angle_deg,strain_energy_mj,converged,max_fiber_stretch,mean_fiber_stretch,"
                     "femur_force_n,tibia_force_n,newton_iterations,substeps,relative_residual,"
                     "min_j,wall_s,femur_contact_n,tibia_contact_n,femur_contact_area_mm2,"
-                    "tibia_contact_area_mm2,max_penetration_mm\n";
+                    "tibia_contact_area_mm2,max_penetration_mm,mean_fiber_strain,max_fiber_strain,"
+                    "volume_beyond_failure_strain,length_change_mm,length_change_pct,time_s\n";
   for (const AngleResult& a : angles) {
     csv += fmt::format("{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.3g},{:.6g},{:.4f}",
                        a.angle_deg, a.strain_energy_mj, a.converged ? 1 : 0, a.max_fiber_stretch,
@@ -132,7 +140,13 @@ void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
       deepest = std::max(deepest, bone.penetration_mm);
       penetration = fmt::format("{:.4g}", deepest);
     }
-    csv += fmt::format(",{},{},{},{},{}\n", force[0], force[1], area[0], area[1], penetration);
+    csv += fmt::format(",{},{},{},{},{}", force[0], force[1], area[0], area[1], penetration);
+    const auto number = [](double value) {
+      return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
+    };
+    csv += fmt::format(",{:.6g},{:.6g},{:.6g},{},{},{}\n", a.mean_fiber_stretch - 1.0,
+                       a.max_fiber_stretch - 1.0, a.failed_volume_fraction,
+                       number(a.length_change_mm), number(a.length_change_pct), number(a.time_s));
   }
   write_text_atomically(m_directory / "flexion.csv", csv);
 

@@ -28,15 +28,27 @@ int set_index(const BoundaryConditions& conditions, const std::string& name)
   return -1;
 }
 
-/// Energy, fiber stretch, attachment forces and contact of state `x` at load factor t.
-void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
-             const KneeContact* contact, bool contact_on, double t, const Eigen::VectorXd& x,
-             const Eigen::VectorXd& residual, AngleResult& result)
+/// What the measures of each angle need besides the state.
+struct Measuring {
+  const HyperelasticBody& body;
+  const BoundaryConditions& conditions;
+  const KneeContact* contact;
+  bool contact_on;
+  double failure_strain;
+  const EmbeddedPolyline* centerline;
+  double reference_length_mm; ///< NaN until the first angle at 0 degrees (or the rest shape's)
+};
+
+/// Energy, fiber stretch, attachment forces, length and contact of state `x` at load factor t.
+void measure(Measuring& m, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& residual,
+             AngleResult& result)
 {
-  if (contact)
-    result.contact = contact->measure(x, t, contact_on, result.gap_mm, result.pressure_mpa);
+  const HyperelasticBody& body = m.body;
+  if (m.contact)
+    result.contact = m.contact->measure(x, t, m.contact_on, result.gap_mm, result.pressure_mpa);
   double volume = 0.0;
   double weighted_stretch = 0.0;
+  double failed_volume = 0.0;
   result.max_fiber_stretch = 0.0;
   result.min_j = INFINITY;
   for (Eigen::Index e = 0; e < body.element_count(); ++e) {
@@ -44,23 +56,36 @@ void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
     const double v0 = body.shape(e).V0;
     volume += v0;
     weighted_stretch += v0 * measures.fiber_stretch;
+    if (measures.fiber_stretch - 1.0 > m.failure_strain)
+      failed_volume += v0;
     result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
     result.min_j = std::min(result.min_j, measures.J);
   }
   result.mean_fiber_stretch = weighted_stretch / volume;
-  const std::vector<Eigen::Vector3d> reactions = reaction_forces(conditions, residual);
-  if (const int femur = set_index(conditions, "femur"); femur >= 0)
+  result.failed_volume_fraction = failed_volume / volume;
+  if (m.centerline) {
+    result.length_mm = m.centerline->length(x);
+    if (std::isnan(m.reference_length_mm))
+      m.reference_length_mm =
+          result.angle_deg == 0.0 ? result.length_mm : m.centerline->length(body.rest_positions());
+    result.length_change_mm = result.length_mm - m.reference_length_mm;
+    result.length_change_pct = 100.0 * result.length_change_mm / m.reference_length_mm;
+  }
+  const std::vector<Eigen::Vector3d> reactions = reaction_forces(m.conditions, residual);
+  if (const int femur = set_index(m.conditions, "femur"); femur >= 0)
     result.femur_force_n = reactions[static_cast<std::size_t>(femur)];
-  if (const int tibia = set_index(conditions, "tibia"); tibia >= 0)
+  if (const int tibia = set_index(m.conditions, "tibia"); tibia >= 0)
     result.tibia_force_n = reactions[static_cast<std::size_t>(tibia)];
 }
 
 /// Equilibrium at each angle, each solve starting from the previous angle's state.
-SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                               const FlexionSettings& settings, const SweepSteps& steps,
-                               const KneeContact* contact, Eigen::VectorXd& x,
+SweepResult quasi_static_sweep(Measuring& measuring, const FlexionSettings& settings,
+                               const SweepSteps& steps, Eigen::VectorXd& x,
                                const AngleCallback& on_angle)
 {
+  const HyperelasticBody& body = measuring.body;
+  const BoundaryConditions& conditions = measuring.conditions;
+  const KneeContact* contact = measuring.contact;
   SweepResult sweep;
   NewtonSettings newton = settings.newton;
   newton.load_factors = steps.load_factors;
@@ -84,7 +109,7 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
         angle.substeps = step.substeps;
         angle.relative_residual = step.relative_residual;
         angle.wall_s = step.wall_s;
-        measure(body, conditions, contact, contact_on, step.load_factor, state, residual, angle);
+        measure(measuring, step.load_factor, state, residual, angle);
         sweep.angles.push_back(angle);
         if (on_angle)
           on_angle(angle, state);
@@ -105,11 +130,13 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
 
 /// Implicit Euler frames while the femur turns at the set angular speed, from the equilibrium at
 /// 0 degrees; the angles of the sweep are recorded at the frames that reach them.
-SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
-                              const FlexionSettings& settings, const SweepSteps& steps,
-                              const KneeContact* contact, Eigen::VectorXd& x,
+SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& settings,
+                              const SweepSteps& steps, Eigen::VectorXd& x,
                               const AngleCallback& on_angle)
 {
+  const HyperelasticBody& body = measuring.body;
+  const BoundaryConditions& conditions = measuring.conditions;
+  const KneeContact* contact = measuring.contact;
   const InteractiveSettings& interactive = settings.interactive;
   const std::vector<double>& angles = steps.angles_deg;
   const double last = angles.back();
@@ -122,8 +149,7 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
   start.mode = FlexionMode::quasi_static;
   SweepResult sweep;
   const auto settle_start = std::chrono::steady_clock::now();
-  SweepResult settled =
-      quasi_static_sweep(body, conditions, start, angle_steps({0.0}), contact, x, {});
+  SweepResult settled = quasi_static_sweep(measuring, start, angle_steps({0.0}), x, {});
   if (!settled.success) {
     settled.failure = "settling at 0 deg before the interactive sweep: " + settled.failure;
     return settled;
@@ -181,7 +207,7 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
         angle.substeps = frame.substeps;
         angle.relative_residual = frame.relative_residual;
         angle.wall_s = seconds_since(since_recorded);
-        measure(body, conditions, contact, contact_on, frame.load_factor, state, residual, angle);
+        measure(measuring, frame.load_factor, state, residual, angle);
         record(angle, state);
         solves = 0;
         since_recorded = std::chrono::steady_clock::now();
@@ -249,7 +275,8 @@ BoundaryConditions knee_conditions(const KneeModel& model, const RigidMotion& fe
 
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
                               const FlexionSettings& settings, const AngleCallback& on_angle,
-                              const KneeContact* contact, const SweepSteps* given_steps)
+                              const KneeContact* contact, const SweepSteps* given_steps,
+                              const EmbeddedPolyline* centerline)
 {
   validate(settings);
   const SweepSteps steps = given_steps ? *given_steps : angle_steps(settings.angles_deg);
@@ -272,10 +299,16 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   } else if (contact) {
     overlap.before = contact->gaps(x, 0.0);
   }
-  SweepResult sweep =
-      settings.mode == FlexionMode::quasi_static
-          ? quasi_static_sweep(body, conditions, settings, steps, contact, x, on_angle)
-          : interactive_sweep(body, conditions, settings, steps, contact, x, on_angle);
+  Measuring measuring{body,
+                      conditions,
+                      contact,
+                      contact && settings.contact.enabled.value_or(true),
+                      settings.ligament.failure_strain,
+                      centerline,
+                      NAN};
+  SweepResult sweep = settings.mode == FlexionMode::quasi_static
+                          ? quasi_static_sweep(measuring, settings, steps, x, on_angle)
+                          : interactive_sweep(measuring, settings, steps, x, on_angle);
   sweep.unrelaxed_energy_mj = unrelaxed;
   sweep.overlap = std::move(overlap);
   sweep.wall_s = seconds_since(start);

@@ -10,6 +10,7 @@
 #include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
+#include "sim/flexion/ligament_length.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 
@@ -53,6 +54,14 @@ struct AngleResult {
   double strain_energy_mj = 0.0;
   double max_fiber_stretch = 0.0;  ///< |F a|, with the in-situ pre-stretch
   double mean_fiber_stretch = 0.0; ///< volume-weighted
+  /// Share of the ligament's volume whose fiber strain (stretch - 1) exceeds the ligament's
+  /// failure strain.
+  double failed_volume_fraction = 0.0;
+  /// The centerline's length from footprint to footprint, and its change from the first step at
+  /// 0 degrees (else from the built shape); NaN without a centerline.
+  double length_mm = NAN;
+  double length_change_mm = NAN;
+  double length_change_pct = NAN;
   Eigen::Vector3d femur_force_n =
       Eigen::Vector3d::Zero(); ///< what the femur exerts on the ligament
   Eigen::Vector3d tibia_force_n = Eigen::Vector3d::Zero();
@@ -88,9 +97,11 @@ using AngleCallback = std::function<void(const AngleResult&, const Eigen::Vector
 /// `conditions`, with ligament-bone contact when `contact` is given and settings.contact does not
 /// turn it off (then `contact` only measures gaps and penetration). Never throws on divergence:
 /// the result says where it stopped.
+/// With `centerline`, each angle gets the ligament's length.
 SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryConditions& conditions,
                               const FlexionSettings& settings, const AngleCallback& on_angle,
                               const KneeContact* contact = nullptr,
-                              const SweepSteps* steps = nullptr);
+                              const SweepSteps* steps = nullptr,
+                              const EmbeddedPolyline* centerline = nullptr);
 
 } // namespace ligsim::sim

@@ -129,6 +129,15 @@ KneeModel load_knee_model(const fs::path& dir)
   model.femur = bone_surface(dir, "femur.vtp", "femur");
   model.tibia = bone_surface(dir, "tibia.vtp", "tibia");
   model.anatomy = read_knee_anatomy(dir);
+  if (fs::exists(dir / "centerline.vtp")) {
+    const auto line = read_vtp(dir / "centerline.vtp");
+    model.centerline.resize(line->GetNumberOfPoints(), 3);
+    for (vtkIdType p = 0; p < line->GetNumberOfPoints(); ++p) {
+      double xyz[3];
+      line->GetPoint(p, xyz);
+      model.centerline.row(p) << xyz[0], xyz[1], xyz[2];
+    }
+  }
   return model;
 }
 

@@ -24,6 +24,7 @@ struct KneeModel {
   vtkSmartPointer<vtkPolyData> femur;
   vtkSmartPointer<vtkPolyData> tibia;
   KneeAnatomy anatomy; ///< anatomy.json of the folder (empty for models built without it)
+  Points centerline;   ///< centerline.vtp of the folder, #P x 3 mm (0 rows without it)
 };
 
 /// Reads the model folder. Throws InputError naming the file and what is missing: the folder,

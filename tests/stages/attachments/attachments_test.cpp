@@ -83,3 +83,104 @@ TEST(Attachments, BadRulesAreClearErrors)
   unknown.rule = "nearest";
   EXPECT_THROW(attachments::find(inputs, unknown, {}), InputError);
 }
+
+namespace {
+const synthetic::Shape& tube()
+{
+  static const synthetic::Shape shape = synthetic::cylinder(3.0, 30.0);
+  return shape;
+}
+} // namespace
+
+TEST(Footprints, AnatomicalEndsFollowTheProximalDirection)
+{
+  attachments::Inputs inputs{&tube().surface, nullptr, nullptr, {}};
+  inputs.proximal = Eigen::Vector3d(0.0, 0.0, -1.0); // this leg is upside down in its frame
+  attachments::Rule femur, tibia;
+  femur.rule = tibia.rule = "end";
+  const auto found = attachments::find(inputs, femur, tibia); // "auto" ends: proximal, distal
+  EXPECT_LT(found.femur.mean.z(), 3.0);
+  EXPECT_GT(found.tibia.mean.z(), 27.0);
+  femur.end = "distal";
+  tibia.end = "proximal";
+  const auto swapped = attachments::find(inputs, femur, tibia);
+  EXPECT_GT(swapped.femur.mean.z(), 27.0);
+  inputs.proximal.reset();
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError); // proximal unknown
+}
+
+TEST(Footprints, LandmarkWithAnatomicalOffsetsAndItsArea)
+{
+  attachments::Inputs inputs{&tube().surface, nullptr, nullptr, {}};
+  inputs.landmarks["medial_epicondyle"] = Eigen::Vector3d(3.0, 0.0, 20.0); // on the side
+  inputs.proximal = Eigen::Vector3d::UnitZ();
+  inputs.posterior = Eigen::Vector3d::UnitY();
+  attachments::Rule femur, tibia;
+  femur.rule = "landmark";
+  femur.landmark = "medial_epicondyle";
+  femur.proximal_mm = 5.0;
+  femur.posterior_mm = 0.0;
+  femur.radius_mm = 2.0;
+  tibia.rule = "end";
+  const auto found = attachments::find(inputs, femur, tibia);
+  for (int v : found.femur.vertices)
+    EXPECT_LE((tube().surface.V.row(v).transpose() - Eigen::Vector3d(3.0, 0.0, 25.0)).norm(),
+              2.0 + 1e-12);
+  // A disc of radius 2 mm on a cylinder of radius 3 mm: about pi 2^2 = 12.6 mm^2 of surface,
+  // less the triangles cut by its rim (each counted by the share of its corners inside).
+  EXPECT_GT(found.femur.area_mm2, 0.6 * M_PI * 4.0);
+  EXPECT_LT(found.femur.area_mm2, 1.2 * M_PI * 4.0);
+  EXPECT_LE(found.femur.extent_mm, 4.0 + 1e-9);
+  EXPECT_GT(found.femur.extent_mm, 3.0);
+
+  femur.landmark = "lateral_epicondyle";
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError); // unknown landmark
+  femur.landmark.clear();
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError); // neither name nor point
+  femur.point_mm = Eigen::Vector3d(3.0, 0.0, 20.0);
+  inputs.posterior.reset();
+  femur.posterior_mm = 1.0;
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError); // offset needs posterior
+}
+
+TEST(Footprints, PatchAndTheSideNextToTheBone)
+{
+  // The patch: a small square sheet touching the tube's +x side near its top.
+  TriangleSurface patch;
+  patch.V.resize(4, 3);
+  patch.V << 3.2, -2.0, 24.0, 3.2, 2.0, 24.0, 3.2, 2.0, 28.0, 3.2, -2.0, 28.0;
+  patch.F.resize(2, 3);
+  patch.F << 0, 1, 2, 0, 2, 3;
+  attachments::Inputs inputs{&tube().surface, nullptr, nullptr, {}};
+  inputs.femur_patch = &patch;
+  attachments::Rule femur, tibia;
+  femur.rule = "patch";
+  femur.distance_mm = 1.0;
+  tibia.rule = "end";
+  const auto found = attachments::find(inputs, femur, tibia);
+  EXPECT_GT(found.femur.vertices.size(), 3u);
+  for (int v : found.femur.vertices)
+    EXPECT_GT(tube().surface.V(v, 0), 2.0);
+  inputs.femur_patch = nullptr;
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError);
+
+  // Near the bone: the distal end keeps only the side the tibia proxy lies against (x < 0).
+  TriangleSurface bone;
+  bone.V.resize(4, 3);
+  bone.V << -3.3, -5.0, -1.0, -3.3, 5.0, -1.0, -3.3, 5.0, 8.0, -3.3, -5.0, 8.0;
+  bone.F.resize(2, 3);
+  bone.F << 0, 1, 2, 0, 2, 3;
+  attachments::Inputs near{&tube().surface, nullptr, &bone, {}};
+  attachments::Rule top, bottom;
+  top.rule = bottom.rule = "end";
+  top.end = "max";
+  bottom.end = "min";
+  bottom.end_length_mm = 6.0;
+  const auto whole = attachments::find(near, top, bottom);
+  bottom.bone_distance_mm = 1.0;
+  const auto side = attachments::find(near, top, bottom);
+  EXPECT_LT(side.tibia.vertices.size(), whole.tibia.vertices.size() / 2);
+  EXPECT_LT(side.tibia.area_mm2, 0.5 * whole.tibia.area_mm2);
+  for (int v : side.tibia.vertices)
+    EXPECT_LT(tube().surface.V(v, 0), -2.0);
+}

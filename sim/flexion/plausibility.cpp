@@ -1,0 +1,123 @@
+#include "sim/flexion/plausibility.hpp"
+
+#include "sim/contact/contact_surface.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace ligsim::sim {
+
+namespace {
+
+double axis_distance(const Eigen::Vector3d& p, const FlexionAxis& axis)
+{
+  const Eigen::Vector3d w = p - axis.point_mm;
+  const Eigen::Vector3d u = axis.direction.normalized();
+  return (w - w.dot(u) * u).norm();
+}
+
+Footprint footprint_of(const TetMesh& mesh, const ContactSurface& boundary,
+                       const std::vector<int>& nodes, const std::string& bone,
+                       const FlexionAxis& axis)
+{
+  Footprint print;
+  print.bone = bone;
+  print.nodes = static_cast<int>(nodes.size());
+  std::vector<bool> bound(static_cast<std::size_t>(mesh.V.rows()), false);
+  for (int n : nodes) {
+    bound[static_cast<std::size_t>(n)] = true;
+    const double d = axis_distance(mesh.V.row(n).transpose(), axis);
+    print.mean_axis_distance_mm += d / static_cast<double>(nodes.size());
+    print.max_axis_distance_mm = std::max(print.max_axis_distance_mm, d);
+  }
+  for (Eigen::Index f = 0; f < boundary.faces.rows(); ++f) {
+    if (!bound[static_cast<std::size_t>(boundary.faces(f, 0))] ||
+        !bound[static_cast<std::size_t>(boundary.faces(f, 1))] ||
+        !bound[static_cast<std::size_t>(boundary.faces(f, 2))])
+      continue;
+    const Eigen::Vector3d a = mesh.V.row(boundary.faces(f, 0));
+    const Eigen::Vector3d b = mesh.V.row(boundary.faces(f, 1));
+    const Eigen::Vector3d c = mesh.V.row(boundary.faces(f, 2));
+    print.area_mm2 += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return print;
+}
+
+} // namespace
+
+std::optional<PublishedArea> published_footprint_area(const std::string& ligament,
+                                                      const std::string& bone)
+{
+  // Superficial MCL: Liu et al., J Orthop Surg Res 2010 (with LaPrade et al., J Bone Joint Surg
+  // Am 2007;89:2000 for the positions). LCL: LaPrade et al., Am J Sports Med 2003;31:854.
+  if (ligament == "MCL")
+    return bone == "femur" ? PublishedArea{79.7, 17.6, "Liu et al. 2010 (superficial MCL)"}
+                           : PublishedArea{348.6, 42.8, "Liu et al. 2010 (superficial MCL)"};
+  if (ligament == "LCL")
+    return bone == "femur" ? PublishedArea{48.0, 0.0, "LaPrade et al. 2003 (range 43-52)"}
+                           : PublishedArea{43.0, 0.0, "LaPrade et al. 2003 (range 39-50)"};
+  return std::nullopt;
+}
+
+std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axis)
+{
+  const ContactSurface boundary = boundary_surface(model.mesh);
+  return {footprint_of(model.mesh, boundary, model.femur_nodes, "femur", axis),
+          footprint_of(model.mesh, boundary, model.tibia_nodes, "tibia", axis)};
+}
+
+nlohmann::json footprints_json(const std::vector<Footprint>& prints, const std::string& ligament)
+{
+  nlohmann::json json = nlohmann::json::object();
+  for (const Footprint& print : prints) {
+    nlohmann::json& entry = json[print.bone];
+    entry = {{"nodes", print.nodes},
+             {"area_mm2", print.area_mm2},
+             {"mean_distance_to_flexion_axis_mm", print.mean_axis_distance_mm},
+             {"max_distance_to_flexion_axis_mm", print.max_axis_distance_mm}};
+    if (const auto published = published_footprint_area(ligament, print.bone))
+      entry["published_area_mm2"] = {
+          {"mean", published->mean_mm2}, {"sd", published->sd_mm2}, {"source", published->source}};
+  }
+  return json;
+}
+
+std::vector<std::string> plausibility_warnings(const AngleResult& angle,
+                                               const PlausibilityContext& context)
+{
+  const LigamentSettings& ligament = context.ligament;
+  std::vector<std::string> causes;
+  for (const Footprint& print : context.footprints)
+    if (print.bone == "femur" && print.max_axis_distance_mm > 10.0)
+      causes.push_back(fmt::format("the femoral footprint reaches {:.1f} mm from the flexion axis "
+                                   "(its nodes turn with the femur on that radius)",
+                                   print.max_axis_distance_mm));
+  if (context.overlap_push_mm > 0.5)
+    causes.push_back(fmt::format("the segmented ligament overlapped the bones (pushed out by up "
+                                 "to {:.2f} mm before flexing)",
+                                 context.overlap_push_mm));
+  if (context.in_situ_strain > 0.04)
+    causes.push_back(fmt::format("an in-situ strain of {:.1f} %", 100.0 * context.in_situ_strain));
+  const std::string why =
+      causes.empty() ? "" : fmt::format("; likely causes: {}", fmt::join(causes, "; "));
+
+  std::vector<std::string> warnings;
+  if (angle.failed_volume_fraction > 0.0)
+    warnings.push_back(fmt::format(
+        "{:.2g} % of the {}'s volume is strained beyond its failure strain of {:.1f} % (max fiber "
+        "strain {:.1f} %){}",
+        100.0 * angle.failed_volume_fraction, ligament.name, 100.0 * ligament.failure_strain,
+        100.0 * (angle.max_fiber_stretch - 1.0), why));
+  for (const auto& [bone, force] :
+       {std::pair{"femur", angle.femur_force_n}, std::pair{"tibia", angle.tibia_force_n}})
+    if (force.norm() > ligament.failure_load_n)
+      warnings.push_back(fmt::format("the {} pulls on the {} with {:.0f} N, beyond its failure "
+                                     "load of {:.0f} N{}",
+                                     bone, ligament.name, force.norm(), ligament.failure_load_n,
+                                     why));
+  return warnings;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,241 @@
+/// The knee's motion from its anatomy: which way the transepicondylar axis points, which path
+/// the femur follows and what each needs; the ligament's length through its tets; the push of
+/// an overlapping ligament out of a bone; the plausibility warnings.
+
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "sim/flexion/initial_overlap.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/knee_motion.hpp"
+#include "sim/flexion/ligament_length.hpp"
+#include "sim/flexion/plausibility.hpp"
+#include "sim/kinematics/joint_coordinates.hpp"
+#include "sim/mesh/structured_mesh.hpp"
+
+#include <gtest/gtest.h>
+#include <vtkCellArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace ligsim;
+using namespace ligsim::sim;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A closed box surface, outward triangles, mm.
+vtkSmartPointer<vtkPolyData> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+{
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  for (int i = 0; i < 8; ++i)
+    points->InsertNextPoint((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(),
+                            (i & 4) ? hi.z() : lo.z());
+  const vtkIdType faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  for (const auto& f : faces)
+    cells->InsertNextCell(3, f);
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->SetPoints(points);
+  surface->SetPolys(cells);
+  return surface;
+}
+
+/// A 4 x 4 x 20 mm bar along z (the ligament), fibers along it: tibia attached at z = 0, femur
+/// at z = 20; a long tibia below and a femur above; +y anterior, +z proximal.
+KneeModel bar_knee()
+{
+  KneeModel model;
+  model.mesh = structured_box_mesh({2, 2, 8}, {4.0, 4.0, 20.0});
+  model.fiber_directions = Eigen::MatrixX3d::Zero(model.mesh.T.rows(), 3);
+  model.fiber_directions.col(2).setOnes();
+  for (Eigen::Index n = 0; n < model.mesh.V.rows(); ++n) {
+    if (model.mesh.V(n, 2) < 1e-9)
+      model.tibia_nodes.push_back(static_cast<int>(n));
+    if (model.mesh.V(n, 2) > 20.0 - 1e-9)
+      model.femur_nodes.push_back(static_cast<int>(n));
+  }
+  model.tibia = box({-20.0, -20.0, -200.0}, {24.0, 24.0, -1.0});
+  model.femur = box({-20.0, -20.0, 21.0}, {24.0, 24.0, 200.0});
+  model.anatomy.proximal = Eigen::Vector3d::UnitZ();
+  model.centerline.resize(2, 3);
+  model.centerline << 2.0, 2.0, 0.0, 2.0, 2.0, 20.0;
+  return model;
+}
+
+FlexionSettings epicondylar(const Eigen::Vector3d& medial, const Eigen::Vector3d& lateral)
+{
+  FlexionSettings settings;
+  settings.axis.source = AxisSettings::Source::transepicondylar;
+  settings.axis.medial_epicondyle_mm = medial;
+  settings.axis.lateral_epicondyle_mm = lateral;
+  settings.images = false;
+  return settings;
+}
+
+} // namespace
+
+TEST(KneeMotion, TransepicondylarAxisPointsTheWayThatFlexes)
+{
+  // Subject's right = anterior x proximal = +x. A right knee's lateral epicondyle lies at +x, a
+  // left knee's at -x; both axes must point to +x (lateral in the right knee, medial in the
+  // left), so that a positive angle swings the femoral shaft back.
+  KneeModel model = bar_knee();
+  for (const std::string side : {"right", "left"}) {
+    SCOPED_TRACE(side);
+    const double out = side == "right" ? 1.0 : -1.0;
+    FlexionSettings settings =
+        epicondylar({2.0 - out * 40.0, 2.0, 22.0}, {2.0 + out * 38.0, 2.0, 22.0});
+    settings.anatomy.side = side; // the side alone orients it ...
+    const KneeMotion by_side = resolve_knee_motion(model, settings);
+    EXPECT_GT(by_side.axis.axis.direction.x(), 0.999);
+    EXPECT_NEAR(by_side.axis.axis.point_mm.x(), 2.0 - out, 1e-12); // the epicondyles' midpoint
+    settings.anatomy.side.clear(); // ... and so do the directions alone
+    settings.anatomy.posterior = -Eigen::Vector3d::UnitY();
+    const KneeMotion by_frame = resolve_knee_motion(model, settings);
+    EXPECT_GT(by_frame.axis.axis.direction.x(), 0.999);
+    // The femur's shaft goes posterior under positive flexion.
+    const Eigen::Vector3d shaft = by_frame.axis.axis.point_mm + Eigen::Vector3d(0, 0, 50);
+    EXPECT_LT(by_frame.femur_path->pose(1.0).translation().y() +
+                  (by_frame.femur_path->pose(1.0).linear() * shaft).y(),
+              by_frame.axis.axis.point_mm.y());
+  }
+  FlexionSettings unknown = epicondylar({-38.0, 2.0, 22.0}, {42.0, 2.0, 22.0});
+  EXPECT_THROW(resolve_knee_motion(model, unknown), InputError); // no side, no posterior
+  FlexionSettings missing;
+  missing.axis.source = AxisSettings::Source::transepicondylar;
+  missing.anatomy.side = "right";
+  EXPECT_THROW(resolve_knee_motion(model, missing), InputError); // no epicondyles anywhere
+  // The model's own landmarks serve when the settings give none.
+  model.anatomy.landmarks["medial_epicondyle"] = {Eigen::Vector3d(-38.0, 2.0, 22.0), "given"};
+  model.anatomy.landmarks["lateral_epicondyle"] = {Eigen::Vector3d(42.0, 2.0, 22.0), "given"};
+  EXPECT_GT(resolve_knee_motion(model, missing).axis.axis.direction.x(), 0.999);
+}
+
+TEST(KneeMotion, PathsAndWhatTheyNeed)
+{
+  const KneeModel model = bar_knee();
+  FlexionSettings settings = epicondylar({-38.0, 2.0, 22.0}, {42.0, 2.0, 22.0});
+  settings.anatomy.posterior = -Eigen::Vector3d::UnitY(); // orients the axis, not the side
+  settings.angles_deg = {0.0, 45.0, 90.0};
+  settings.motion.path = MotionSettings::Path::passive;
+  EXPECT_THROW(resolve_knee_motion(model, settings), InputError); // the coupling needs the side
+  settings.motion.path = MotionSettings::Path::automatic;
+  const KneeMotion pure = resolve_knee_motion(model, settings);
+  EXPECT_NE(pure.figures.value("note", "").find("side is not known"), std::string::npos);
+  EXPECT_NEAR(joint_pose(pure.jcs, pure.femur_path->pose(1.0)).internal_rotation_deg, 0.0, 1e-9);
+
+  settings.anatomy.side = "right";
+  const KneeMotion passive = resolve_knee_motion(model, settings);
+  const JointPose at90 = joint_pose(passive.jcs, passive.femur_path->pose(1.0));
+  EXPECT_NEAR(at90.flexion_deg, 90.0, 1e-9);
+  EXPECT_NEAR(at90.internal_rotation_deg, 14.88, 0.01); // Walker et al. 1988
+  EXPECT_EQ(passive.load_factors, (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(passive.figures["tibial_axis"]["source"], "principal axis of the tibia");
+
+  // A motion in time: its rows are the steps.
+  const fs::path csv = fs::temp_directory_path() / "ligsim_knee_motion_time.csv";
+  std::ofstream(csv) << "time_s,flexion_deg,internal_rotation_deg\n0,0,0\n1,30,5\n2,10,2\n";
+  settings.motion.path = MotionSettings::Path::table;
+  settings.motion.table = csv;
+  const KneeMotion timed = resolve_knee_motion(model, settings);
+  EXPECT_EQ(timed.times_s, (std::vector<double>{0.0, 1.0, 2.0}));
+  EXPECT_EQ(timed.angles_deg, (std::vector<double>{0.0, 30.0, 10.0}));
+  EXPECT_EQ(timed.load_factors, (std::vector<double>{0.0, 0.5, 1.0}));
+  settings.mode = FlexionMode::interactive;
+  EXPECT_THROW(resolve_knee_motion(model, settings), InputError);
+}
+
+TEST(LigamentLength, FollowsTheTetsItIsEmbeddedIn)
+{
+  const KneeModel model = bar_knee();
+  const EmbeddedPolyline line(model.mesh, model.centerline);
+  Eigen::VectorXd x(3 * model.mesh.V.rows());
+  for (Eigen::Index n = 0; n < model.mesh.V.rows(); ++n)
+    x.segment<3>(3 * n) = model.mesh.V.row(n).transpose();
+  EXPECT_NEAR(line.length(x), 20.0, 1e-12);
+  for (Eigen::Index n = 0; n < model.mesh.V.rows(); ++n)
+    x(3 * n + 2) *= 1.1; // stretched 10 % along the bar
+  EXPECT_NEAR(line.length(x), 22.0, 1e-12);
+  EXPECT_EQ(line.largest_miss_mm(), 0.0);
+}
+
+TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
+{
+  ligsim::Progress::set_quiet(true);
+  KneeModel model = bar_knee();
+  // A bone bulging 0.4 mm into the bar's -x side over its middle (x < 0.4, z 6..14).
+  model.tibia = box({-20.0, -20.0, 6.0}, {0.4, 24.0, 14.0});
+  FlexionSettings settings;
+  settings.in_situ_strain = 0.0;
+  const HyperelasticBody body(model.mesh, settings.material,
+                              prestretched_fibers(model, settings.in_situ_strain));
+  const BoundaryConditions conditions =
+      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
+  ContactConfig config;
+  config.bones = {"tibia"};
+  const fs::path cache = fs::temp_directory_path() / "ligsim_initial_overlap_cache";
+  fs::remove_all(cache);
+  const KneeContact contact(model, conditions, config, cache);
+  Eigen::VectorXd x = body.rest_positions();
+  const OverlapReport report =
+      resolve_initial_overlap(body, conditions, contact, settings.newton, x);
+  ASSERT_TRUE(report.pushed);
+  ASSERT_EQ(report.before.size(), 1u);
+  EXPECT_GT(report.before[0].inside, 0);
+  EXPECT_LT(report.before[0].min_gap_mm, -0.3);
+  EXPECT_EQ(report.after[0].inside, 0);
+  EXPECT_GT(report.after[0].min_gap_mm, 0.0);
+  EXPECT_GT(report.max_node_move_mm, 0.4);
+  EXPECT_LT(report.max_node_move_mm, 1.0);
+  // No element was turned inside out on the way.
+  for (Eigen::Index e = 0; e < body.element_count(); ++e)
+    EXPECT_GT(body.measures(x, e).J, 0.5);
+  // A ligament clear of the bones is left alone.
+  Eigen::VectorXd clear = body.rest_positions();
+  model.tibia = box({-20.0, -20.0, 6.0}, {-1.0, 24.0, 14.0});
+  fs::remove_all(cache);
+  const KneeContact apart(model, conditions, config, cache);
+  EXPECT_FALSE(resolve_initial_overlap(body, conditions, apart, settings.newton, clear).pushed);
+  EXPECT_EQ(clear, body.rest_positions());
+}
+
+TEST(Plausibility, ABadAxisIsSaidOutLoud)
+{
+  ligsim::Progress::set_quiet(true);
+  const KneeModel model = bar_knee();
+  FlexionSettings settings;
+  settings.angles_deg = {0.0, 30.0};
+  settings.images = false;
+  const HyperelasticBody body(model.mesh, settings.material,
+                              prestretched_fibers(model, settings.in_situ_strain));
+  const EmbeddedPolyline centerline(model.mesh, model.centerline);
+  const auto warnings_of = [&](const FlexionAxis& axis) {
+    PlausibilityContext context{settings.ligament, footprints(model, axis), settings.in_situ_strain,
+                                0.0};
+    std::vector<std::string> warnings;
+    const SweepResult sweep = run_flexion_sweep(
+        body, knee_conditions(model, axis, 30.0), settings,
+        [&](const AngleResult& angle, const Eigen::VectorXd&) {
+          for (const std::string& w : plausibility_warnings(angle, context))
+            warnings.push_back(w);
+        },
+        nullptr, nullptr, &centerline);
+    EXPECT_TRUE(sweep.success) << sweep.failure;
+    return std::make_pair(warnings, sweep);
+  };
+  // Through the femoral footprint: the bar bends, no fiber near failure.
+  const auto [good, good_sweep] = warnings_of({{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()});
+  EXPECT_TRUE(good.empty()) << good.front();
+  EXPECT_LT(std::abs(good_sweep.angles.back().length_change_pct), 5.0);
+  // 40 mm behind it: turning 30 degrees drags the footprint 21 mm away from the tibia.
+  const auto [bad, bad_sweep] = warnings_of({{2.0, -38.0, 20.0}, Eigen::Vector3d::UnitX()});
+  ASSERT_FALSE(bad.empty());
+  EXPECT_NE(bad.front().find("beyond its failure strain of 17.1 %"), std::string::npos);
+  EXPECT_NE(bad.front().find("the femoral footprint reaches"), std::string::npos);
+  EXPECT_GT(bad_sweep.angles.back().failed_volume_fraction, 0.5);
+  EXPECT_GT(bad_sweep.angles.back().length_change_pct, 50.0);
+}
