@@ -43,7 +43,8 @@ void add_options(CLI::App* command, BuildOptions& o)
                    "TOML file with every parameter (see README); flags override it")
       ->check(CLI::ExistingFile);
   command->add_option("--surface", o.surface,
-                      "ligament surface: .stl, .obj, .ply, .vtp or .vtk, mm");
+                      "ligament surface: .stl, .obj, .ply, .vtp or .vtk (mm), or .glb/.gltf "
+                      "(metres) with #MESH to choose one of several meshes");
   command->add_option("--femur", o.femur, "femur surface (optional)");
   command->add_option("--tibia", o.tibia, "tibia surface (optional)");
   command->add_option("--out", o.out, "output folder")->required();

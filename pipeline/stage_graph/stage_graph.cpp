@@ -6,6 +6,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "stages/io/surface_path.hpp"
 
 #include <fstream>
 #include <set>
@@ -57,8 +58,14 @@ std::string stage_key(const Stage& stage, const BuildConfig& config, const fs::p
 {
   ContentHash hash;
   hash.add(kAlgorithmVersion).add(stage.name).add(stage_parameters(config, stage.name).dump());
-  for (const fs::path& input : stage.user_inputs(config))
-    hash.add(input.filename().string()).add_file(input);
+  // A glTF input hashes the whole file and the mesh chosen in it (`knee.glb#femur`).
+  for (const fs::path& input : stage.user_inputs(config)) {
+    const io::SurfacePath source = io::split_surface_path(input);
+    hash.add(source.file.filename().string());
+    if (!source.mesh.empty())
+      hash.add("#" + source.mesh);
+    hash.add_file(source.file);
+  }
   for (const std::string& upstream : stage.depends)
     for (const std::string& output : find_stage(upstream).outputs)
       hash.add(output).add_file(dir / output);
