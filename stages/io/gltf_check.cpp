@@ -190,6 +190,16 @@ private:
     return integer(object, key, where, 0, n - 1);
   }
 
+  /// `object[key]`, which must be present, names an element of the root's array `target`.
+  std::int64_t required_reference(const json& object, const char* key, const std::string& where,
+                                  const char* target) const
+  {
+    const std::optional<std::int64_t> index = reference(object, key, where, target);
+    if (!index)
+      bad(fmt::format("{}.{} is missing", where, key));
+    return *index;
+  }
+
   /// `object[key]`, if present, is an array of `size` numbers (any size if `size` < 0).
   void numbers(const json& object, const char* key, const std::string& where, int size) const
   {
@@ -289,7 +299,7 @@ private:
     const json& views = list("bufferViews");
     for (std::size_t v = 0; v < views.size(); ++v) {
       const std::string where = fmt::format("bufferViews[{}]", v);
-      const std::int64_t buffer = *reference(views[v], "buffer", where, "buffers");
+      const std::int64_t buffer = required_reference(views[v], "buffer", where, "buffers");
       const std::int64_t offset = integer(views[v], "byteOffset", where, 0, max_int, 0);
       const std::int64_t length = integer(views[v], "byteLength", where, 1, max_int);
       m_view_stride.push_back(integer(views[v], "byteStride", where, 4, 252, 0));
@@ -346,7 +356,7 @@ private:
         bad(fmt::format("{} is sparse: ligsim does not read sparse accessors", where));
       if (member(accessor, "bufferView") == nullptr)
         bad(fmt::format("{} has no bufferView (all zeros): not a mesh ligsim can read", where));
-      const std::int64_t view = *reference(accessor, "bufferView", where, "bufferViews");
+      const std::int64_t view = required_reference(accessor, "bufferView", where, "bufferViews");
       Accessor read;
       read.component_type = integer(accessor, "componentType", where, 0, max_int);
       const int bytes = component_bytes(read.component_type);
@@ -412,10 +422,10 @@ private:
     if (attributes == nullptr || !attributes->is_object() || !attributes->contains("POSITION"))
       bad(fmt::format("{} has no attributes.POSITION", where));
     const Accessor& position =
-        m_accessors[std::size_t(*reference(*attributes, "POSITION", where, "accessors"))];
+        m_accessors[std::size_t(required_reference(*attributes, "POSITION", where, "accessors"))];
     for (const auto& [name, value] : attributes->items()) {
       const Accessor& accessor = m_accessors[std::size_t(
-          *reference(*attributes, name.c_str(), where + ".attributes", "accessors"))];
+          required_reference(*attributes, name.c_str(), where + ".attributes", "accessors"))];
       check_attribute(name, accessor, where);
       if (accessor.count != position.count)
         bad(fmt::format("{}: attribute {} has {} elements, POSITION {}", where, name,

@@ -100,7 +100,13 @@ vtkSmartPointer<vtkPolyData> read_gltf(const fs::path& file, const std::string& 
   const VtkErrorTrap trap(reader);
   reader->SetFileName(file.c_str());
   reader->SetCurrentScene(contents.scene);
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::exception& e) {
+    // VTK's loader lets the standard library's errors through (std::length_error from a size
+    // it computed); what check_gltf found nothing wrong with should not get here.
+    fail("cannot read '{}': VTK's glTF reader failed: {}", file.string(), e.what());
+  }
   if (trap.caught())
     fail("cannot read '{}': {}", file.string(), trap.message());
 
