@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 namespace ligsim::cli {
 
@@ -43,7 +44,8 @@ void add_options(CLI::App* command, BuildOptions& o)
                    "TOML file with every parameter (see README); flags override it")
       ->check(CLI::ExistingFile);
   command->add_option("--surface", o.surface,
-                      "ligament surface: .stl, .obj, .ply, .vtp or .vtk, mm");
+                      "ligament surface: .stl, .obj, .ply, .vtp or .vtk (mm), or .glb/.gltf "
+                      "(metres) with #MESH to choose one of several meshes");
   command->add_option("--femur", o.femur, "femur surface (optional)");
   command->add_option("--tibia", o.tibia, "tibia surface (optional)");
   command->add_option("--out", o.out, "output folder")->required();
@@ -201,21 +203,30 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   // a label map are written only once all of them could be made).
   nlohmann::json label_report;
   BuildConfig config;
-  repair::Report repairs;
+  repair::Report repairs, femur_repairs, tibia_repairs;
   try {
     const StageMeter label_meter;
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
     if (!label_report.is_null())
       label_report["wall_s"] = label_meter.wall_s(); // reading the map, surfaces, writing them
     pipeline::load_ligament(config, nullptr, &repairs);
-    pipeline::load_bone(config.femur);
-    pipeline::load_bone(config.tibia);
+    pipeline::load_bone(config.femur, &femur_repairs);
+    pipeline::load_bone(config.tibia, &tibia_repairs);
   } catch (const Error&) {
     clean_up();
     throw;
   }
   for (const std::string& line : repair::describe(repairs))
     log_info(fmt::format("surface repair: {}", line));
+  nlohmann::json bone_repair = nlohmann::json::object();
+  for (const auto& [bone, file, report] : {std::tuple{"femur", &config.femur, &femur_repairs},
+                                           std::tuple{"tibia", &config.tibia, &tibia_repairs}}) {
+    if (file->empty())
+      continue;
+    for (const std::string& line : repair::describe(*report))
+      log_info(fmt::format("{} repair: {}", bone, line));
+    bone_repair[bone] = repair::to_json(*report);
+  }
 
   RunSummary summary(target == "model" ? "build" : target);
   summary.inputs() = {{"config", o.config},
@@ -225,6 +236,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
                       {"labels", config.labels.string()}};
   summary.parameters() = pipeline::to_json(config);
   summary.results()["surface_repair"] = repair::to_json(repairs);
+  summary.results()["bone_repair"] = bone_repair;
   if (!label_report.is_null())
     summary.results()["label_map"] = label_report;
   try {

@@ -140,7 +140,8 @@ void add_labelmap_command(CLI::App& app)
   auto options = std::make_shared<LabelmapOptions>();
   command
       ->add_option("--part", options->parts,
-                   "FILE:LABEL or FILE:LABEL:NAME, a closed surface, its label and its name")
+                   "FILE:LABEL or FILE:LABEL:NAME, a closed surface, its label and its name "
+                   "(FILE may be knee.glb#MESH)")
       ->required();
   command->add_option("--spacing", options->spacing, "voxel size x,y,z in mm (default 0.3,0.3,1)")
       ->delimiter(',')

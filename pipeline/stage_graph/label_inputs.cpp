@@ -6,6 +6,7 @@
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/labelmap/label_surface.hpp"
+#include "stages/repair/repair.hpp"
 
 #include <vtkPolyData.h>
 
@@ -93,13 +94,33 @@ BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
       continue;
     labelmap::Selection selection;
     TriangleSurface surface;
+    repair::Report repairs;
+    const bool bone = part.target != &BuildConfig::surface;
     try {
       const int label = labelmap::resolve_label(part.label, names, "label");
       surface = labelmap::label_surface(image, label, &selection);
+      // Voxels joined only by an edge or a corner, and parts thinner than the smoothing keeps,
+      // give a bone's surface several shells: contact needs one.
+      if (bone) {
+        repair::Result repaired = repair::repair_bone(surface, "its surface");
+        surface = std::move(repaired.surface);
+        repairs = std::move(repaired.report);
+      }
     } catch (const InputError& e) {
       fail("label map '{}', {}: {}", config.labels.string(), part.name, e.what());
     }
     report[part.name] = selection_json(selection, surface, names);
+    if (bone) {
+      const auto count = [&](const char* kind) {
+        const repair::Repair* found = repairs.find(kind);
+        return found ? found->count : 0;
+      };
+      nlohmann::json& figures = report[part.name];
+      figures["dropped_inner_cavities"] = count("inner_cavities");
+      figures["dropped_stray_shells"] = count("stray_components");
+      figures["shells"] = 1 + count("inner_cavities") + count("stray_components");
+      figures["bone_repair"] = repair::to_json(repairs);
+    }
     surfaces.emplace_back(&part, std::move(surface));
   }
 

@@ -19,7 +19,8 @@ inline constexpr const char* ligament_from_labels = "labels_ligament.vtp";
 /// extracts the ligament's surface (and the bones' where their labels are given), checking
 /// everything before `dir` is touched; then writes them into `dir` (ligament_from_labels,
 /// femur.vtp, tibia.vtp) and returns the config pointing at them, with what was selected in
-/// `report` (frame, spacing, label names, components dropped, holes filled). Otherwise returns
+/// `report` (frame, spacing, label names, components dropped, holes filled; for a bone, the
+/// shells its surface had and the repair that left one: repair::repair_bone). Otherwise returns
 /// `config`.
 BuildConfig surfaces_from_labels(const BuildConfig& config, const std::filesystem::path& dir,
                                  nlohmann::json& report);

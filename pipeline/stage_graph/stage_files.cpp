@@ -57,13 +57,15 @@ TriangleSurface load_ligament(const BuildConfig& config,
   return surface;
 }
 
-std::optional<TriangleSurface> load_bone(const fs::path& file)
+std::optional<TriangleSurface> load_bone(const fs::path& file, repair::Report* repairs)
 {
   if (file.empty())
     return std::nullopt;
-  TriangleSurface surface = io::read_surface(file);
-  io::orient_outward(surface);
-  return surface;
+  repair::Result repaired =
+      repair::repair_bone(io::read_surface(file), fmt::format("bone surface '{}'", file.string()));
+  if (repairs != nullptr)
+    *repairs = std::move(repaired.report);
+  return std::move(repaired.surface);
 }
 
 Mask load_mask(const fs::path& dir)

@@ -42,8 +42,10 @@ TriangleSurface load_ligament(const BuildConfig& config,
                               std::map<std::string, Eigen::VectorXd>* arrays = nullptr,
                               repair::Report* repairs = nullptr);
 
-/// A bone surface if the config names one.
-std::optional<TriangleSurface> load_bone(const std::filesystem::path& file);
+/// A bone surface if the config names one: read and repaired into one closed, outward shell
+/// (repair::repair_bone; what was done goes to `repairs`).
+std::optional<TriangleSurface> load_bone(const std::filesystem::path& file,
+                                         repair::Report* repairs = nullptr);
 
 /// The voxel images, read from the stages' .vdb files (sparse; the .vti files are for ParaView).
 Mask load_mask(const std::filesystem::path& dir);

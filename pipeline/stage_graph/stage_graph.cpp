@@ -6,6 +6,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "stages/io/surface_path.hpp"
 
 #include <fstream>
 #include <set>
@@ -18,8 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize;
-/// 3: sparse grids passed between the stages as .vdb files).
-constexpr const char* kAlgorithmVersion = "ligsim-build-3";
+/// 3: sparse grids passed between the stages as .vdb files; 4: bones repaired into one closed
+/// shell).
+constexpr const char* kAlgorithmVersion = "ligsim-build-4";
 
 const Stage& find_stage(const std::string& name)
 {
@@ -57,8 +59,14 @@ std::string stage_key(const Stage& stage, const BuildConfig& config, const fs::p
 {
   ContentHash hash;
   hash.add(kAlgorithmVersion).add(stage.name).add(stage_parameters(config, stage.name).dump());
-  for (const fs::path& input : stage.user_inputs(config))
-    hash.add(input.filename().string()).add_file(input);
+  // A glTF input hashes the whole file and the mesh chosen in it (`knee.glb#femur`).
+  for (const fs::path& input : stage.user_inputs(config)) {
+    const io::SurfacePath source = io::split_surface_path(input);
+    hash.add(source.file.filename().string());
+    if (!source.mesh.empty())
+      hash.add("#" + source.mesh);
+    hash.add_file(source.file);
+  }
   for (const std::string& upstream : stage.depends)
     for (const std::string& output : find_stage(upstream).outputs)
       hash.add(output).add_file(dir / output);

@@ -2,12 +2,11 @@
 
 #include "common/error.hpp"
 #include "sim/contact/bone_level_set.hpp"
+#include "sim/contact/bone_penetration.hpp"
 #include "sim/contact/contact_surface.hpp"
 
 #include <Eigen/Geometry>
-#include <vtkImplicitPolyDataDistance.h>
 #include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <map>
@@ -34,8 +33,8 @@ struct KneeContact::Bone {
   std::string name;
   std::unique_ptr<BoneLevelSet> grid;
   std::optional<RigidMotion> motion;
-  std::vector<bool> bound; ///< per node: attached to this bone
-  vtkSmartPointer<vtkImplicitPolyDataDistance> exact;
+  std::vector<bool> bound;                      ///< per node: attached to this bone
+  std::unique_ptr<BonePenetration> penetration; ///< against the triangles, not the grid
 };
 
 KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& conditions,
@@ -59,8 +58,7 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;
-    bone->exact = vtkSmartPointer<vtkImplicitPolyDataDistance>::New();
-    bone->exact->SetInput(surface);
+    bone->penetration = std::make_unique<BonePenetration>(triangles);
     const LevelSetFigures& grid = bone->grid->figures();
     m_figures[name] = {{"cache", (cache_dir / (name + ".vdb")).string()},
                        {"reused", grid.reused},
@@ -149,8 +147,7 @@ std::vector<BoneContact> KneeContact::measure(const Eigen::VectorXd& x, double t
       if (bone.bound[static_cast<std::size_t>(n)])
         continue;
       const Eigen::Vector3d p = to_rest * Eigen::Vector3d(x.segment<3>(3 * n));
-      double xyz[3] = {p.x(), p.y(), p.z()};
-      contact.penetration_mm = std::max(contact.penetration_mm, -bone.exact->EvaluateFunction(xyz));
+      contact.penetration_mm = std::max(contact.penetration_mm, bone.penetration->depth_mm(p));
     }
     result.push_back(contact);
   }

@@ -2,7 +2,7 @@
 /// @brief The knee model's bones as contact obstacles for the ligament: a level set per bone
 /// (cached in <model>/contact/), the femur's moving with the femur's rigid motion, the barrier
 /// on the ligament's free surface nodes, and an independent check of penetration against the
-/// bone triangles themselves (VTK's vtkImplicitPolyDataDistance, not the grids).
+/// bone triangles themselves (winding number and distance: BonePenetration, not the grids).
 
 #include "sim/contact/contact_config.hpp"
 #include "sim/contact/contact_potential.hpp"
@@ -16,8 +16,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-class vtkImplicitPolyDataDistance;
 
 namespace ligsim::sim {
 

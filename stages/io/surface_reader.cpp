@@ -4,10 +4,12 @@
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
+#include "stages/io/gltf_reader.hpp"
 #include "stages/io/legacy_vtk_check.hpp"
 #include "stages/io/obj_reader.hpp"
 #include "stages/io/ply_check.hpp"
 #include "stages/io/stl_reader.hpp"
+#include "stages/io/surface_path.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/io/vtp_check.hpp"
 
@@ -51,9 +53,12 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
   return reader->GetOutput();
 }
 
-vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
+vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file, const std::string& mesh)
 {
   const std::string extension = lower_extension(file);
+  // glTF is checked by our code, then read by VTK (its reader trusts the file).
+  if (extension == ".glb" || extension == ".gltf")
+    return read_gltf(file, mesh);
   // STL and OBJ are read by our own code; PLY, VTP and legacy VTK are checked before VTK reads
   // them (its readers crash on truncated files and trust the counts).
   if (extension == ".stl")
@@ -72,8 +77,8 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file)
     check_legacy_vtk(file);
     return run_reader<vtkPolyDataReader>(file);
   }
-  fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp or .vtk)", file.string(),
-       extension);
+  fail("'{}': unknown surface format '{}' (use .stl, .obj, .ply, .vtp, .vtk, .glb or .gltf)",
+       file.string(), extension);
 }
 
 /// VTK's readers pass cells through unchecked: a face naming vertex 23333 of 3 makes the filters
@@ -119,25 +124,26 @@ std::string edge_text(const TriangleSurface& surface, const std::pair<int, int>&
 
 } // namespace
 
-TriangleSurface read_surface(const fs::path& file,
+TriangleSurface read_surface(const fs::path& path,
                              std::map<std::string, Eigen::VectorXd>* point_arrays)
 {
-  if (!fs::is_regular_file(file))
-    fail("missing surface file '{}'", file.string());
-  vtkSmartPointer<vtkPolyData> raw = read_polydata(file);
+  const SurfacePath source = split_surface_path(path);
+  if (!fs::is_regular_file(source.file))
+    fail("missing surface file '{}'", source.file.string());
+  vtkSmartPointer<vtkPolyData> raw = read_polydata(source.file, source.mesh);
   if (raw == nullptr || raw->GetNumberOfPoints() == 0)
-    fail("'{}' holds no points (unreadable or empty)", file.string());
+    fail("'{}' holds no points (unreadable or empty)", path.string());
 
   // Check coordinates before merging: a NaN point would poison the merge.
   for (vtkIdType i = 0; i < raw->GetNumberOfPoints(); ++i) {
     double p[3];
     raw->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      fail("'{}': vertex {} has a non-finite coordinate ({}, {}, {})", file.string(), i, p[0], p[1],
+      fail("'{}': vertex {} has a non-finite coordinate ({}, {}, {})", path.string(), i, p[0], p[1],
            p[2]);
   }
 
-  check_cells(raw, file);
+  check_cells(raw, path);
 
   auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
   triangles->SetInputData(raw);
@@ -155,7 +161,7 @@ TriangleSurface read_surface(const fs::path& file,
   vtkPolyData* cleaned = clean->GetOutput();
   TriangleSurface surface = from_polydata(cleaned);
   if (surface.F.rows() == 0)
-    fail("'{}' holds no triangles", file.string());
+    fail("'{}' holds no triangles", path.string());
   if (point_arrays != nullptr) {
     vtkPointData* data = cleaned->GetPointData();
     for (int a = 0; a < data->GetNumberOfArrays(); ++a) {

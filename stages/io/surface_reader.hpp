@@ -1,5 +1,6 @@
 #pragma once
-/// @brief Reading segmented surfaces: STL (ASCII and binary), OBJ, PLY, VTP and legacy VTK, mm.
+/// @brief Reading segmented surfaces: STL (ASCII and binary), OBJ, PLY, VTP and legacy VTK, mm;
+/// glTF (.glb, .gltf; metres, converted to mm), one mesh of it named by `file.glb#name`.
 
 #include "common/mesh.hpp"
 
@@ -12,8 +13,9 @@
 namespace ligsim::io {
 
 /// Reads a triangle surface. Polygons are triangulated, coincident points merged, unused points
-/// dropped. Throws InputError naming the file on: a missing file, an unknown extension, a file
-/// with no triangles, a non-finite coordinate (with the vertex index).
+/// dropped. A glTF path may end in `#name` to choose a mesh (see split_surface_path and
+/// read_gltf). Throws InputError naming the file on: a missing file, an unknown extension, a
+/// file with no triangles, a non-finite coordinate (with the vertex index).
 /// If `point_arrays` is given, it receives the file's one-component point-data arrays, by name,
 /// one value per (merged) vertex.
 TriangleSurface read_surface(const std::filesystem::path& file,

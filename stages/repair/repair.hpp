@@ -23,14 +23,18 @@ struct Location {
   Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();
   std::vector<int> vertices;
   std::vector<Eigen::Vector3d> vertex_points_mm; ///< their coordinates, for edges and vertices
+  double area_mm2 = 0.0; ///< a filled hole: the patch's area; a removed piece: its area
+  int triangles = 0;     ///< a filled hole: triangles added; a removed piece: its triangles
 };
 
 /// One kind of defect and what was done about it.
 struct Repair {
   std::string kind;   ///< "degenerate_triangles", "non_manifold_edges", ...
-  std::string action; ///< "removed", "split", "flipped", "filled"
+  std::string action; ///< "removed", "split", "flipped", "filled", "merged"
   int count = 0;
   std::vector<Location> locations; ///< the first few
+  double area_mm2 = 0.0;           ///< sum of the locations' areas, all of them (holes, pieces)
+  int triangles = 0;               ///< sum of the locations' triangles, all of them (holes, pieces)
 };
 
 struct Report {
@@ -60,6 +64,17 @@ struct Result {
 
 /// Repairs `surface`; returns it unchanged, with an empty report, when nothing is wrong.
 Result repair_surface(const TriangleSurface& surface, const Parameters& parameters = {});
+
+/// Makes a bone surface one closed, consistently and outward oriented shell, as contact needs
+/// (a level set signed by flood fill, an inside test by winding number): coincident vertices
+/// merged, degenerate and duplicate triangles removed, non-manifold edges and vertices split,
+/// triangles turned to agree, every hole filled whatever its size with a fair patch (smooth
+/// across the rim; "holes", with each patch's area and triangles), then the shell of the
+/// largest enclosed volume kept: the other pieces
+/// are "inner_cavities" (inside it) or "stray_components" (outside), removed; last the whole
+/// surface turned outward ("inward_orientation", the triangles turned). Throws InputError,
+/// with `what` ("femur surface 'femur.stl'") and the place, if the result is still open.
+Result repair_bone(const TriangleSurface& surface, const std::string& what);
 
 /// The report for summary.json.
 nlohmann::json to_json(const Report& report);

@@ -60,6 +60,31 @@ void add_location(Repair& repair, const Location& location)
     repair.locations.push_back(location);
 }
 
+Repair merge_duplicate_vertices(const Points& V, Soup& triangles)
+{
+  Repair repair{"duplicate_vertices", "merged", 0, {}};
+  std::vector<bool> used(static_cast<std::size_t>(V.rows()), false);
+  for (const auto& t : triangles)
+    for (int v : t)
+      used[static_cast<std::size_t>(v)] = true;
+  std::map<std::array<double, 3>, int> first;
+  std::vector<int> target(used.size(), -1);
+  for (int v = 0; v < static_cast<int>(used.size()); ++v) {
+    if (!used[static_cast<std::size_t>(v)])
+      continue;
+    const auto [it, inserted] = first.emplace(std::array{V(v, 0), V(v, 1), V(v, 2)}, v);
+    target[static_cast<std::size_t>(v)] = it->second;
+    if (!inserted) {
+      ++repair.count;
+      add_location(repair, {point(V, v), {it->second, v}, {point(V, v), point(V, v)}});
+    }
+  }
+  for (auto& t : triangles)
+    for (int& v : t)
+      v = target[static_cast<std::size_t>(v)];
+  return repair;
+}
+
 Repair remove_degenerate(const Points& V, Soup& triangles)
 {
   Repair repair{"degenerate_triangles", "removed", 0, {}};

@@ -1,6 +1,7 @@
 #pragma once
-/// @brief Finding the defects of a triangle soup that need no halfedge structure: degenerate and
-/// duplicated triangles (removed here), non-manifold edges and vertices (only located here).
+/// @brief Finding the defects of a triangle soup that need no halfedge structure: coincident
+/// vertices (merged here), degenerate and duplicated triangles (removed here), non-manifold edges
+/// and vertices (only located here).
 
 #include "stages/repair/repair.hpp"
 
@@ -10,6 +11,10 @@
 namespace ligsim::repair {
 
 using Soup = std::vector<std::array<int, 3>>;
+
+/// Points every triangle corner at the first vertex of the same coordinates; counts the
+/// vertices so merged into an earlier one.
+Repair merge_duplicate_vertices(const Points& V, Soup& triangles);
 
 /// Removes triangles with a repeated vertex or zero area.
 Repair remove_degenerate(const Points& V, Soup& triangles);

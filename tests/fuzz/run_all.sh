@@ -18,6 +18,7 @@ source_dir=$(cd "$(dirname "$0")" && pwd)
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(fuzz_surface_stl fuzz_surface_obj fuzz_surface_ply fuzz_surface_vtp fuzz_surface_vtk
+           fuzz_surface_gltf
            fuzz_label_map_nrrd fuzz_label_map_mha fuzz_build_config fuzz_flexion_config
            fuzz_simulate_scene fuzz_tear_scene)
 fi

@@ -5,7 +5,10 @@
 /// axis.
 
 #include "common/vtk_files.hpp"
+#include "pipeline/stage_graph/label_inputs.hpp"
+#include "stages/geometry/surface_topology.hpp"
 #include "stages/io/vtk_convert.hpp"
+#include "stages/labelmap/label_image.hpp"
 #include "tests/pipeline/cli_runner.hpp"
 #include "tests/stages/labelmap/oblique_shapes.hpp"
 
@@ -19,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numeric>
 
 using namespace ligsim;
 using namespace ligsim::test;
@@ -122,4 +126,58 @@ TEST(BuildLabels, RotatedAnisotropicCylinderComesOutInThePhysicalFrame)
   const double span_mm = (line.row(0) - line.row(line.rows() - 1)).norm();
   EXPECT_GT(span_mm, 0.8 * 2.0 * cylinder.half_length_mm);
   fs::remove_all(dir);
+}
+
+TEST(BuildLabels, BoneWithCornerTouchingBlobsComesOutAsOneShell)
+{
+  // A 10-voxel cube of bone (label 2) with two 2-voxel blobs touching it at a corner each: one
+  // 26-connected component, but the contour gives the blobs shells of their own. The ligament
+  // (label 1) is a block elsewhere.
+  labelmap::LabelImage image;
+  image.dims = {30, 30, 30};
+  image.labels.assign(30 * 30 * 30, 0);
+  const auto fill = [&](Eigen::Vector3i lo, Eigen::Vector3i hi, int label) {
+    for (int k = lo.z(); k < hi.z(); ++k)
+      for (int j = lo.y(); j < hi.y(); ++j)
+        for (int i = lo.x(); i < hi.x(); ++i)
+          image(i, j, k) = label;
+  };
+  fill({5, 5, 5}, {15, 15, 15}, 2);
+  fill({15, 15, 15}, {17, 17, 17}, 2); // at the cube's corner voxel (14, 14, 14)
+  fill({15, 3, 15}, {17, 5, 17}, 2);   // at its corner voxel (14, 5, 14)
+  fill({20, 20, 5}, {27, 27, 12}, 1);
+  const fs::path dir = fresh_folder("labels_shells");
+  fs::create_directories(dir);
+  labelmap::write_label_image(image, dir / "knee.nrrd");
+
+  pipeline::BuildConfig config;
+  config.labels = dir / "knee.nrrd";
+  config.ligament_label = "1";
+  config.tibia_label = "2";
+  nlohmann::json report;
+  const pipeline::BuildConfig result = pipeline::surfaces_from_labels(config, dir, report);
+  const nlohmann::json& tibia = report["tibia"];
+  EXPECT_EQ(tibia["components"].get<int>(), 1) << tibia.dump();
+  EXPECT_EQ(tibia["shells"].get<int>(), 3) << tibia.dump();
+  EXPECT_EQ(tibia["dropped_stray_shells"].get<int>(), 2) << tibia.dump();
+  EXPECT_EQ(tibia["dropped_inner_cavities"].get<int>(), 0) << tibia.dump();
+
+  // The written surface: one closed, outward shell about the cube's 1000 mm^3.
+  const TriangleSurface surface = io::from_polydata(read_vtp(result.tibia));
+  EXPECT_TRUE(check_topology(surface).closed_manifold());
+  EXPECT_NEAR(signed_volume(surface), 1000.0, 50.0);
+  std::vector<int> parent(static_cast<std::size_t>(surface.V.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v)
+      v = parent[static_cast<std::size_t>(v)];
+    return v;
+  };
+  for (Eigen::Index f = 0; f < surface.F.rows(); ++f)
+    for (int c = 1; c < 3; ++c)
+      parent[static_cast<std::size_t>(root(surface.F(f, c)))] = root(surface.F(f, 0));
+  int shells = 0;
+  for (int v = 0; v < static_cast<int>(parent.size()); ++v)
+    shells += root(v) == v ? 1 : 0;
+  EXPECT_EQ(shells, 1);
 }

@@ -251,6 +251,52 @@ TEST(Build, DefectiveMclIsRepairedIntoAValidModel)
   expect_centerline_inside_between_attachments(out, io::read_surface(out / "attachments.vtp"), 2.0);
 }
 
+TEST(Build, BonesBesideTheModelAreClosedOutwardShells)
+{
+  // The band's femur box inside out, one triangle missing, with a stray box 20 mm off.
+  const fs::path shape = fresh_folder("bone_shape"), out = fresh_folder("bone_model");
+  ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+  const TriangleSurface box = io::read_surface(shape / "femur.stl");
+  std::string obj;
+  for (Eigen::Index v = 0; v < box.V.rows(); ++v)
+    obj += fmt::format("v {} {} {}\n", box.V(v, 0), box.V(v, 1), box.V(v, 2));
+  const Eigen::Vector3d far = box.V.colwise().maxCoeff().transpose() + Eigen::Vector3d(20, 0, 0);
+  for (Eigen::Index v = 0; v < box.V.rows(); ++v)
+    obj += fmt::format("v {} {} {}\n", far.x() + 0.1 * (box.V(v, 0) - box.V(0, 0)),
+                       far.y() + 0.1 * (box.V(v, 1) - box.V(0, 1)),
+                       far.z() + 0.1 * (box.V(v, 2) - box.V(0, 2)));
+  for (Eigen::Index f = 0; f < box.F.rows(); ++f) {
+    if (f > 0)
+      obj += fmt::format("f {} {} {}\n", box.F(f, 0) + 1, box.F(f, 2) + 1, box.F(f, 1) + 1);
+    const Eigen::Index o = box.V.rows();
+    obj +=
+        fmt::format("f {} {} {}\n", box.F(f, 0) + o + 1, box.F(f, 1) + o + 1, box.F(f, 2) + o + 1);
+  }
+  std::ofstream(shape / "femur_defective.obj") << obj;
+  const CliResult result =
+      run_ligsim("build --surface " + (shape / "surface.stl").string() + " --femur " +
+                 (shape / "femur_defective.obj").string() + " --tibia " +
+                 (shape / "tibia.stl").string() + " --voxel 0.4 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  for (const std::string& line :
+       {std::string("femur repair: filled holes: 1"),
+        std::string("femur repair: removed stray components: 1"),
+        fmt::format("femur repair: flipped inward orientation: {}", box.F.rows())})
+    EXPECT_NE(result.stderr_text.find(line), std::string::npos) << line << "\n"
+                                                                << result.stderr_text;
+  const nlohmann::json repairs = read_summary(out)["results"]["bone_repair"];
+  EXPECT_TRUE(repairs["femur"]["repaired"].get<bool>()) << repairs.dump();
+  EXPECT_FALSE(repairs["tibia"]["repaired"].get<bool>()) << repairs.dump();
+  for (const char* bone : {"femur", "tibia"}) {
+    const TriangleSurface written = io::from_polydata(read_vtp(out / (std::string(bone) + ".vtp")));
+    EXPECT_TRUE(check_topology(written).closed_manifold()) << bone;
+    EXPECT_EQ(written.F.rows(), io::read_surface(shape / (std::string(bone) + ".stl")).F.rows())
+        << bone;
+  }
+  EXPECT_NEAR(signed_volume(io::from_polydata(read_vtp(out / "femur.vtp"))), signed_volume(box),
+              1e-6 * signed_volume(box));
+}
+
 TEST(Build, LabelMapOfTheKneeBuildsAValidModel)
 {
   // The shipped label map (0.3 x 0.3 x 1 mm voxels) made from the VHF surfaces, its labels

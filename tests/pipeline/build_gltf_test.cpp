@@ -1,0 +1,87 @@
+/// glTF inputs through the CLI: `file.glb#mesh` in a build config (relative to its folder), in
+/// the flags, in the stage cache's key, and in `ligsim labelmap --part`.
+
+#include "tests/pipeline/cli_runner.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string mcl = "#VH_F_left_tibial_collateral_ligament";
+
+nlohmann::json read_summary(const fs::path& dir)
+{
+  std::ifstream in(dir / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+std::string status(const fs::path& dir, const char* stage)
+{
+  return read_summary(dir)["stages"][stage]["status"].get<std::string>();
+}
+
+} // namespace
+
+TEST(BuildGltf, ConfigPathKeepsTheMeshNameAndTheCacheKeyHoldsIt)
+{
+  const fs::path dir = fresh_folder("gltf_config"), out = dir / "out";
+  fs::create_directories(dir);
+  // The ligament file, relative to the config's folder.
+  const fs::path ligaments =
+      fs::relative(source_path("data/hra-knee/VH_F_Ligaments_Knee_L.glb"), dir);
+  std::ofstream(dir / "build.toml")
+      << "[input]\nsurface = \"" << ligaments.string() << mcl << "\"\n";
+  const std::string build =
+      "voxelize --config " + (dir / "build.toml").string() + " --out " + out.string();
+  const CliResult first = run_ligsim(build);
+  ASSERT_EQ(first.exit_code, 0) << first.stderr_text;
+  EXPECT_EQ(status(out, "voxelize"), "ran");
+  const nlohmann::json summary = read_summary(out);
+  EXPECT_EQ(summary["inputs"]["surface"].get<std::string>(), (dir / ligaments).string() + mcl);
+  EXPECT_GT(summary["stages"]["voxelize"]["figures"]["inside_voxels"].get<long>(), 1000)
+      << summary["stages"]["voxelize"]["figures"].dump();
+
+  ASSERT_EQ(run_ligsim(build).exit_code, 0);
+  EXPECT_EQ(status(out, "voxelize"), "reused");
+  // Another mesh of the same file: a new key.
+  const CliResult other = run_ligsim(
+      build + " --surface " + source_path("data/hra-knee/VH_F_Ligaments_Knee_L.glb").string() +
+      "#VH_F_fibular_collateral_ligament_L");
+  ASSERT_EQ(other.exit_code, 0) << other.stderr_text;
+  EXPECT_EQ(status(out, "voxelize"), "ran");
+}
+
+TEST(BuildGltf, UnknownMeshNameIsOneClearError)
+{
+  const fs::path out = fresh_folder("gltf_unknown");
+  const CliResult result = run_ligsim(
+      "voxelize --surface " + source_path("data/hra-knee/VH_F_Ligaments_Knee_L.glb").string() +
+      "#MCL --out " + out.string());
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.stderr_text.find("has no mesh named 'MCL'; its meshes: "), std::string::npos)
+      << result.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(LabelmapCli, PartsAndRegionFromGltfFiles)
+{
+  const fs::path dir = fresh_folder("gltf_labelmap");
+  fs::create_directories(dir);
+  const std::string ligaments = source_path("data/hra-knee/VH_F_Ligaments_Knee_L.glb").string();
+  const std::string tibia = source_path("data/hra-knee/VH_F_Knee_L.glb").string() + "#VH_F_tibia_L";
+  const CliResult result =
+      run_ligsim("labelmap --part " + ligaments + mcl + ":1:MCL --part " + tibia + ":2 --around " +
+                 tibia + " --spacing 2 2 2 --out " + (dir / "map.nrrd").string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json labelmap = read_summary(dir)["stages"]["labelmap"];
+  // The image covers the tibia (about 79 x 343 x 62 mm) with 10 mm all round, in 2 mm voxels.
+  EXPECT_GE(labelmap["dims"][1].get<int>(), 180) << labelmap.dump();
+  EXPECT_GT(labelmap["voxels_per_label"]["1"].get<long>(), 100) << labelmap.dump();
+  EXPECT_GT(labelmap["voxels_per_label"]["2"].get<long>(), 10000) << labelmap.dump();
+}
