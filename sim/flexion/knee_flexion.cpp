@@ -28,17 +28,6 @@ int set_index(const BoundaryConditions& conditions, const std::string& name)
   return -1;
 }
 
-/// The load factor of each angle: angle / last angle (all 0 when the last angle is 0).
-std::vector<double> load_factors(const std::vector<double>& angles_deg)
-{
-  std::vector<double> factors;
-  const double last = angles_deg.back();
-  for (double angle : angles_deg)
-    factors.push_back(last > 0.0 ? angle / last : 0.0);
-  factors.back() = last > 0.0 ? 1.0 : 0.0; // no round-off at the end
-  return factors;
-}
-
 /// Energy, fiber stretch, attachment forces and contact of state `x` at load factor t.
 void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
              const KneeContact* contact, bool contact_on, double t, const Eigen::VectorXd& x,
@@ -46,19 +35,10 @@ void measure(const HyperelasticBody& body, const BoundaryConditions& conditions,
 {
   if (contact)
     result.contact = contact->measure(x, t, contact_on, result.gap_mm, result.pressure_mpa);
-  double volume = 0.0;
-  double weighted_stretch = 0.0;
-  result.max_fiber_stretch = 0.0;
-  result.min_j = INFINITY;
-  for (Eigen::Index e = 0; e < body.element_count(); ++e) {
-    const ElementMeasures measures = body.measures(x, e);
-    const double v0 = body.shape(e).V0;
-    volume += v0;
-    weighted_stretch += v0 * measures.fiber_stretch;
-    result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
-    result.min_j = std::min(result.min_j, measures.J);
-  }
-  result.mean_fiber_stretch = weighted_stretch / volume;
+  const FiberMeasures fibers = measure_fibers(body, x);
+  result.mean_fiber_stretch = fibers.mean_fiber_stretch;
+  result.max_fiber_stretch = fibers.max_fiber_stretch;
+  result.min_j = fibers.min_j;
   const std::vector<Eigen::Vector3d> reactions = reaction_forces(conditions, residual);
   if (const int femur = set_index(conditions, "femur"); femur >= 0)
     result.femur_force_n = reactions[static_cast<std::size_t>(femur)];
@@ -73,7 +53,7 @@ SweepResult quasi_static_sweep(const HyperelasticBody& body, const BoundaryCondi
 {
   SweepResult sweep;
   NewtonSettings newton = settings.newton;
-  newton.load_factors = load_factors(settings.angles_deg);
+  newton.load_factors = flexion_load_factors(settings.angles_deg);
   StaticSolver solver(body, conditions, newton);
   const bool contact_on = contact && settings.contact.enabled.value_or(true);
   if (contact_on)
@@ -199,6 +179,33 @@ SweepResult interactive_sweep(const HyperelasticBody& body, const BoundaryCondit
 }
 
 } // namespace
+
+std::vector<double> flexion_load_factors(const std::vector<double>& angles_deg)
+{
+  std::vector<double> factors;
+  const double last = angles_deg.back();
+  for (double angle : angles_deg)
+    factors.push_back(last > 0.0 ? angle / last : 0.0);
+  factors.back() = last > 0.0 ? 1.0 : 0.0; // no round-off at the end
+  return factors;
+}
+
+FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x)
+{
+  FiberMeasures result;
+  double volume = 0.0;
+  double weighted_stretch = 0.0;
+  for (Eigen::Index e = 0; e < body.element_count(); ++e) {
+    const ElementMeasures measures = body.measures(x, e);
+    const double v0 = body.shape(e).V0;
+    volume += v0;
+    weighted_stretch += v0 * measures.fiber_stretch;
+    result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
+    result.min_j = std::min(result.min_j, measures.J);
+  }
+  result.mean_fiber_stretch = weighted_stretch / volume;
+  return result;
+}
 
 ResolvedAxis resolve_flexion_axis(const KneeModel& model, const AxisSettings& settings)
 {

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -38,6 +39,19 @@ FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain);
 /// factor 1.
 BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& axis,
                                    double last_angle_deg);
+
+/// The load factor of each angle of a sweep: angle / last angle (all 0 when the last is 0).
+std::vector<double> flexion_load_factors(const std::vector<double>& angles_deg);
+
+/// Fiber stretch |F a| (with the in-situ pre-stretch) and volume change over the elements.
+struct FiberMeasures {
+  double mean_fiber_stretch = 0.0; ///< weighted by rest volume
+  double max_fiber_stretch = 0.0;
+  double min_j = INFINITY;
+};
+
+/// The fiber measures of state `x` (flat positions, mm).
+FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x);
 
 /// The state at one angle of the sweep.
 struct AngleResult {

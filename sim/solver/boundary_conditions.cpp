@@ -2,14 +2,21 @@
 
 #include "common/error.hpp"
 
-#include <Eigen/Geometry>
-
 namespace ligsim::sim {
 
 Eigen::Vector3d RigidMotion::apply(const Eigen::Vector3d& rest_mm, double t) const
 {
   const Eigen::AngleAxisd rotation(t * angle_rad, axis);
   return rotation * (rest_mm - point_mm) + point_mm + t * translation_mm;
+}
+
+Eigen::Isometry3d RigidMotion::pose(double t) const
+{
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(t * angle_rad, axis).toRotationMatrix();
+  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
+  result.linear() = rotation;
+  result.translation() = point_mm - rotation * point_mm + t * translation_mm;
+  return result;
 }
 
 Eigen::Vector3d ConstraintSet::target(const Eigen::Vector3d& rest_mm, double t) const

@@ -5,6 +5,7 @@
 #include "common/mesh.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <optional>
@@ -22,6 +23,8 @@ struct RigidMotion {
   Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
 
   Eigen::Vector3d apply(const Eigen::Vector3d& rest_mm, double t) const;
+  /// The motion at load factor t as one rigid transform of rest positions (mm).
+  Eigen::Isometry3d pose(double t) const;
 };
 
 /// One named node set whose components are prescribed.
