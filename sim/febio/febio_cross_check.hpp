@@ -1,0 +1,35 @@
+#pragma once
+/// @brief The knee flexion solved twice on the same settings, by ligsim and by FEBio, and the
+/// two answers side by side (`ligsim verify febio`; README, "FEBio export").
+
+#include "sim/febio/febio_comparison.hpp"
+#include "sim/febio/febio_run.hpp"
+#include "sim/febio/knee_feb.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct CrossCheck {
+  std::vector<ComparisonRow> rows;
+  std::vector<AngleResult> ours; ///< our sweep's angles
+  std::vector<FebioStep> febio;  ///< FEBio's steps, measured as ours
+  std::vector<std::string> warnings;
+  FebioRun run;
+  double ours_wall_s = 0.0; ///< setup (body, contact grids) and sweep
+  std::filesystem::path feb;
+};
+
+/// Sweeps `model` with `settings` (quasi-static) about `axis`, writes the same problem to
+/// `<out>/knee.feb`, runs FEBio (`febio`) on it and compares them angle by angle: femur force
+/// magnitude (attachment and contact together), strain energy and mean fiber stretch. `extra_
+/// wall_s` (reading the model, finding the axis) is added to our wall time. Contact grids are
+/// cached in `<model_dir>/contact`. Throws SolverError when either solver stops.
+CrossCheck cross_check_with_febio(const KneeModel& model, const FlexionSettings& settings,
+                                  const FlexionAxis& axis, const std::filesystem::path& febio,
+                                  const std::filesystem::path& out, double extra_wall_s = 0.0);
+
+} // namespace ligsim::sim
