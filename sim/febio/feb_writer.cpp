@@ -89,24 +89,23 @@ void write_control(Buffer& out, const FebProblem& problem)
                  "      <dtmax lc=\"1\">1</dtmax>\n"
                  "    </time_stepper>\n"
                  "    <solver type=\"solid\">\n"
-                 "      <symmetric_stiffness>{}</symmetric_stiffness>\n"
+                 "      <symmetric_stiffness>symmetric</symmetric_stiffness>\n"
                  "      <dtol>{}</dtol>\n"
                  "      <etol>{}</etol>\n"
                  "      <rtol>{}</rtol>\n"
                  "      <lstol>0.9</lstol>\n"
                  "      <max_refs>{}</max_refs>\n"
                  "      <diverge_reform>1</diverge_reform>\n"
+                 "      <optimize_bw>1</optimize_bw>\n"
                  "      <reform_each_time_step>1</reform_each_time_step>\n"
                  "      <qn_method type=\"BFGS\">\n"
                  "        <max_ups>0</max_ups>\n"
                  "      </qn_method>\n"
-                 "{}"
                  "    </solver>\n"
                  "  </Control>\n",
                  problem.step_labels.size(), s.max_retries, number(s.min_step),
-                 problem.contact ? "non-symmetric" : "symmetric", number(s.displacement_tolerance),
-                 number(s.energy_tolerance), number(s.residual_tolerance), s.max_reformations,
-                 problem.contact ? "      <linear_solver type=\"bicgstab\"/>\n" : "");
+                 number(s.displacement_tolerance), number(s.energy_tolerance),
+                 number(s.residual_tolerance), s.max_reformations);
 }
 
 void write_materials(Buffer& out, const FebProblem& problem)
@@ -354,7 +353,7 @@ void write_contact(Buffer& out, const FebProblem& problem)
                      "      <auto_penalty>1</auto_penalty>\n"
                      "      <two_pass>0</two_pass>\n"
                      "      <search_tol>{2}</search_tol>\n"
-                     "      <symmetric_stiffness>0</symmetric_stiffness>\n"
+                     "      <symmetric_stiffness>1</symmetric_stiffness>\n"
                      "      <fric_coeff>0</fric_coeff>\n"
                      "    </contact>\n",
                      bone.name, number(problem.contact_settings.penalty),

@@ -108,7 +108,7 @@ std::string comparison_table(const std::vector<ComparisonRow>& rows)
                      "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
   for (const ComparisonRow& r : rows)
     fmt::format_to(it,
-                   "| {} | {:.2f} / {:.2f} | {:+.3f} % | {:.2f} / {:.2f} | {:+.3f} % | {:.5f} "
+                   "| {} | {:.2f} / {:.2f} | {:+.1e} % | {:.2f} / {:.2f} | {:+.1e} % | {:.5f} "
                    "/ {:.5f} | {:+.1e} |\n",
                    r.angle_deg, r.ours_femur_force_n, r.febio_femur_force_n,
                    100.0 * relative_difference(r.ours_femur_force_n, r.febio_femur_force_n),
