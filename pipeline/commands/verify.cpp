@@ -411,11 +411,19 @@ void run_verify_febio(const FebioOptions& options)
   nlohmann::json steps = nlohmann::json::array();
   for (std::size_t k = 0; k < check.febio.size(); ++k) {
     const sim::FebioStep& f = check.febio[k];
+    nlohmann::json bones = nlohmann::json::object();
+    for (const sim::BoneContact& bone : check.ours[k].contact)
+      bones[bone.bone] = {{"ours_contact_force_n", json_vector3(bone.force_n)},
+                          {"ours_min_gap_mm", bone.min_gap_mm},
+                          {"ours_penetration_mm", bone.penetration_mm}};
+    for (const sim::BoneContact& bone : check.febio_contact[k])
+      bones[bone.bone]["febio_penetration_mm"] = bone.penetration_mm;
     steps.push_back({{"angle_deg", f.angle_deg},
                      {"febio_femur_force_n", json_vector3(f.femur_force_n)},
-                     {"ours_femur_force_n", json_vector3(check.ours[k].femur_force_n)},
+                     {"ours_femur_attachment_force_n", json_vector3(check.ours[k].femur_force_n)},
                      {"febio_logged_energy_mj", f.logged_energy_mj},
-                     {"febio_femur_pose_error_mm", f.femur_pose_error_mm}});
+                     {"febio_femur_pose_error_mm", f.femur_pose_error_mm},
+                     {"bones", bones}});
   }
   summary.results() = {{"steps", steps},
                        {"febio_log", check.run.log.string()},

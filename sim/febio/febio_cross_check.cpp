@@ -3,7 +3,6 @@
 #include "common/error.hpp"
 #include "common/resources.hpp"
 #include "sim/febio/feb_writer.hpp"
-#include "sim/flexion/knee_contact.hpp"
 
 #include <chrono>
 
@@ -34,6 +33,13 @@ CrossCheck cross_check_with_febio(const KneeModel& model, const FlexionSettings&
   write_feb(check.feb, problem);
   check.run = run_febio(febio, check.feb);
   check.febio = febio_steps(check.run.parsed, problem, feb_femur, body);
+  const std::vector<double> load_factors = flexion_load_factors(settings.angles_deg);
+  for (std::size_t k = 0; k < check.febio.size(); ++k) {
+    Eigen::VectorXd gap_mm;
+    Eigen::VectorXd pressure_mpa;
+    check.febio_contact.push_back(
+        contact.measure(check.febio[k].x, load_factors[k], false, gap_mm, pressure_mpa));
+  }
 
   for (std::size_t k = 0; k < check.ours.size(); ++k) {
     const AngleResult& ours = check.ours[k];

@@ -5,6 +5,7 @@
 #include "sim/febio/febio_comparison.hpp"
 #include "sim/febio/febio_run.hpp"
 #include "sim/febio/knee_feb.hpp"
+#include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 
 #include <filesystem>
@@ -17,6 +18,9 @@ struct CrossCheck {
   std::vector<ComparisonRow> rows;
   std::vector<AngleResult> ours; ///< our sweep's angles
   std::vector<FebioStep> febio;  ///< FEBio's steps, measured as ours
+  /// Per FEBio step, per bone: gaps and how deep FEBio's ligament goes into the bone (the
+  /// independent check against the triangles; no forces).
+  std::vector<std::vector<BoneContact>> febio_contact;
   std::vector<std::string> warnings;
   FebioRun run;
   double ours_wall_s = 0.0; ///< setup (body, contact grids) and sweep
