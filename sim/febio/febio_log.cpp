@@ -66,8 +66,10 @@ FebioLog parse_febio_log(const std::string& text, const std::string& name)
       log.normal_termination = true;
     if (line.find("E R R O R   T E R M I N A T I O N") != std::string::npos)
       log.error_termination = true;
-    if (log.error.empty() && box_text(line) == "ERROR") {
-      // The message follows in the box until its closing line of stars.
+    if (box_text(line) == "ERROR") {
+      // The message follows in the box until its closing line of stars. FEBio recovers from
+      // some (a time step cut back): the last one is what ended a failed run.
+      log.error.clear();
       for (std::size_t j = i + 1; j < lines.size() && lines[j].find("****") == std::string::npos;
            ++j) {
         const std::string part = box_text(lines[j]);

@@ -21,7 +21,7 @@ struct FebioRecord {
 struct FebioLog {
   bool normal_termination = false;
   bool error_termination = false;
-  std::string error; ///< the text of FEBio's first ERROR box, if any
+  std::string error; ///< the text of FEBio's last ERROR box, if any
   std::vector<FebioRecord> records;
 
   /// The record `record` at time `time` (within 1e-9), or nullptr.

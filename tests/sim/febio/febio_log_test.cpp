@@ -70,9 +70,15 @@ TEST(FebioLog, ReadsRecordsByNumberAndTime)
   EXPECT_EQ(log.find(3, 1.0), nullptr);
 }
 
-TEST(FebioLog, ReportsFebiosError)
+TEST(FebioLog, ReportsFebiosLastError)
 {
-  const FebioLog log = parse_febio_log(R"(Reading file knee.feb ...FAILED!
+  const FebioLog log = parse_febio_log(R"(
+ *************************************************************************
+ *                                ERROR                                  *
+ * Negative jacobian detected.                                           *
+ *************************************************************************
+Retrying time step. Retry attempt 1 of max 10
+Reading file knee.feb ...FAILED!
 
  *************************************************************************
  *                                ERROR                                  *
