@@ -23,6 +23,8 @@ void add_simulate_command(CLI::App& app);
 void add_verify_command(CLI::App& app);
 /// `tear`: membrane tearing scenes.
 void add_tear_command(CLI::App& app);
+/// `export`: a built knee model as another program's input (`export febio`).
+void add_export_command(CLI::App& app);
 /// `flexion`: the knee flexion sweep on a built model.
 void add_flexion_command(CLI::App& app);
 /// `study`: convergence ladders, segmentation sensitivity, cohort tables.

@@ -1,11 +1,11 @@
 #include "pipeline/commands/commands.hpp"
+#include "pipeline/commands/flexion_options.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
-#include "sim/flexion/flexion_config.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/flexion_pictures.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -27,60 +27,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct FlexionOptions {
-  fs::path config;
-  fs::path model;
+struct FlexionJobOptions {
+  FlexionOptions flexion;
   fs::path out;
-  std::vector<double> angles;
-  std::string mode;
-  std::vector<double> axis_points;
-  std::vector<double> posterior;
-  std::optional<double> in_situ_strain;
-  std::optional<double> speed;
-  std::optional<double> time_step;
-  std::string contact; ///< "on", "off" or "" (the config's, by default on)
   bool no_images = false;
 };
-
-/// The config file (if any), then the flags over it.
-sim::FlexionSettings settings_from(const FlexionOptions& options)
-{
-  sim::FlexionSettings settings;
-  if (!options.config.empty())
-    sim::read_flexion_config(options.config, settings);
-  if (!options.model.empty())
-    settings.model_dir = options.model;
-  if (settings.model_dir.empty())
-    fail("flexion: no model folder: pass --model DIR (the output folder of `ligsim build`) or "
-         "set `model` in the config");
-  if (!options.angles.empty())
-    settings.angles_deg = options.angles;
-  if (options.mode == "static")
-    settings.mode = sim::FlexionMode::quasi_static;
-  else if (options.mode == "interactive")
-    settings.mode = sim::FlexionMode::interactive;
-  if (!options.axis_points.empty()) {
-    settings.axis.source = sim::AxisSettings::Source::points;
-    settings.axis.first_mm = Eigen::Vector3d(options.axis_points.data());
-    settings.axis.second_mm = Eigen::Vector3d(options.axis_points.data() + 3);
-  }
-  if (!options.posterior.empty()) {
-    settings.axis.source = sim::AxisSettings::Source::condyles;
-    settings.axis.posterior = Eigen::Vector3d(options.posterior.data());
-  }
-  if (options.in_situ_strain)
-    settings.in_situ_strain = *options.in_situ_strain;
-  if (options.speed)
-    settings.interactive.angular_speed_deg_s = *options.speed;
-  if (options.time_step)
-    settings.interactive.time_step_s = *options.time_step;
-  if (options.no_images)
-    settings.images = false;
-  if (!options.contact.empty())
-    settings.contact.enabled = options.contact == "on";
-  sim::validate(settings);
-  return settings;
-}
 
 void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,
                        RunSummary& summary)
@@ -173,14 +124,16 @@ void log_motion(const sim::KneeMotion& motion)
                        motion.figures["side"].get<std::string>()));
 }
 
-void run_flexion(const FlexionOptions& options)
+void run_flexion(const FlexionJobOptions& options)
 {
   RunSummary summary("flexion");
   StageMeter setup_meter;
-  const sim::FlexionSettings settings = settings_from(options);
+  sim::FlexionSettings settings = flexion_settings_from(options.flexion, "flexion");
+  if (options.no_images)
+    settings.images = false;
   summary.inputs()["model"] = settings.model_dir.string();
-  if (!options.config.empty())
-    summary.inputs()["config"] = options.config.string();
+  if (!options.flexion.config.empty())
+    summary.inputs()["config"] = options.flexion.config.string();
   const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
   const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   record_parameters(settings, motion, summary);
@@ -277,37 +230,11 @@ void run_flexion(const FlexionOptions& options)
 
 void add_flexion_command(CLI::App& app)
 {
-  auto options = std::make_shared<FlexionOptions>();
+  auto options = std::make_shared<FlexionJobOptions>();
   auto* command = app.add_subcommand(
       "flexion", "sweep a built knee model through flexion (tibia fixed, femur turning)");
-  command->add_option("--config", options->config, "flexion config (.toml); flags override it")
-      ->check(CLI::ExistingFile);
-  command->add_option("--model", options->model, "output folder of `ligsim build`");
+  add_flexion_options(*command, options->flexion, true);
   command->add_option("--out", options->out, "output folder")->required();
-  command->add_option("--angles", options->angles, "flexion angles, deg (default 0,15,...,90)")
-      ->delimiter(',');
-  command->add_option("--mode", options->mode, "static (default) or interactive")
-      ->check(CLI::IsMember({"static", "interactive"}));
-  auto* axis = command
-                   ->add_option("--axis", options->axis_points,
-                                "flexion axis through two points x1,y1,z1,x2,y2,z2 (mm)")
-                   ->delimiter(',')
-                   ->expected(6);
-  command
-      ->add_option("--posterior", options->posterior,
-                   "posterior direction x,y,z: fit the axis to the posterior condyles")
-      ->delimiter(',')
-      ->expected(3)
-      ->excludes(axis);
-  command->add_option("--in-situ-strain", options->in_situ_strain,
-                      "fiber pre-strain of the built pose (default 0.029)");
-  command->add_option("--speed", options->speed, "interactive: femur speed, deg/s (default 45)");
-  command->add_option("--time-step", options->time_step,
-                      "interactive: frame time step, s (default 0.01)");
-  command
-      ->add_option("--contact", options->contact,
-                   "ligament-bone contact: on (default) or off (the ligament may cross the bones)")
-      ->check(CLI::IsMember({"on", "off"}));
   command->add_flag("--no-images", options->no_images, "no PNG pictures (no X server needed)");
   command->callback([options] { run_flexion(*options); });
 }

@@ -1,4 +1,5 @@
 #include "pipeline/commands/commands.hpp"
+#include "pipeline/commands/flexion_options.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
@@ -6,6 +7,7 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "common/svg_plot.hpp"
+#include "sim/febio/febio_cross_check.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/verify/cube_compression.hpp"
 #include "sim/verify/cube_verification.hpp"
@@ -16,6 +18,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -359,6 +362,79 @@ void run_stability(const StabilityOptions& options)
                       failed);
 }
 
+struct FebioOptions {
+  FlexionOptions flexion;
+  fs::path febio;
+  fs::path out;
+};
+
+/// `verify febio`: the flexion by ligsim and by FEBio on the same settings, side by side.
+void run_verify_febio(const FebioOptions& options)
+{
+  RunSummary summary("verify febio");
+  const auto start = std::chrono::steady_clock::now();
+  sim::FlexionSettings settings = flexion_settings_from(options.flexion, "verify febio");
+  settings.images = false;
+  if (settings.material.fiber->convention == sim::FiberConvention::paper) {
+    settings.material.fiber->convention = sim::FiberConvention::weiss;
+    log_info("fiber convention: 'weiss' in both solvers for the comparison (FEBio implements only "
+             "Weiss' convention; the config's 'paper' is replaced)");
+  }
+  summary.inputs()["model"] = settings.model_dir.string();
+  summary.inputs()["config"] = options.flexion.config.string();
+  summary.inputs()["febio"] = options.febio.string();
+  const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
+  const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
+  const sim::ResolvedAxis& axis = motion.axis;
+  const double setup_s = seconds_since(start);
+  summary.parameters() = {{"angles_deg", motion.angles_deg},
+                          {"convention", to_string(settings.material.fiber->convention)},
+                          {"volumetric", to_string(settings.material.volumetric)},
+                          {"in_situ_strain", settings.in_situ_strain},
+                          {"contact", settings.contact.enabled.value_or(true)},
+                          {"axis_point_mm", json_vector3(axis.axis.point_mm)},
+                          {"axis_direction", json_vector3(axis.axis.direction)}};
+  ensure_directory(options.out);
+  StageMeter meter;
+  const sim::CrossCheck check =
+      sim::cross_check_with_febio(model, settings, motion, options.febio, options.out, setup_s);
+  summary.add_stage("cross_check", meter,
+                    {{"ours_wall_s", check.ours_wall_s}, {"febio_wall_s", check.run.wall_s}});
+  for (const std::string& warning : check.warnings)
+    log_info("warning: " + warning);
+  write_text_atomically(options.out / "febio_comparison.csv", sim::comparison_csv(check.rows));
+  const std::string table = sim::comparison_table(check.rows);
+  write_text_atomically(options.out / "febio_comparison.md",
+                        fmt::format("# ligsim against FEBio on {}\n\nFEBio's energy and fiber "
+                                    "stretch: its node positions measured by ligsim's law.\n\n",
+                                    settings.model_dir.string()) +
+                            table);
+  nlohmann::json steps = nlohmann::json::array();
+  for (std::size_t k = 0; k < check.febio.size(); ++k) {
+    const sim::FebioStep& f = check.febio[k];
+    nlohmann::json bones = nlohmann::json::object();
+    for (const sim::BoneContact& bone : check.ours[k].contact)
+      bones[bone.bone] = {{"ours_contact_force_n", json_vector3(bone.force_n)},
+                          {"ours_min_gap_mm", bone.min_gap_mm},
+                          {"ours_penetration_mm", bone.penetration_mm}};
+    for (const sim::BoneContact& bone : check.febio_contact[k])
+      bones[bone.bone]["febio_penetration_mm"] = bone.penetration_mm;
+    steps.push_back({{"angle_deg", f.angle_deg},
+                     {"febio_femur_force_n", json_vector3(f.femur_force_n)},
+                     {"ours_femur_attachment_force_n", json_vector3(check.ours[k].femur_force_n)},
+                     {"febio_logged_energy_mj", f.logged_energy_mj},
+                     {"febio_femur_pose_error_mm", f.femur_pose_error_mm},
+                     {"bones", bones}});
+  }
+  summary.results() = {{"steps", steps},
+                       {"febio_log", check.run.log.string()},
+                       {"ours_wall_s", check.ours_wall_s},
+                       {"febio_wall_s", check.run.wall_s}};
+  summary.write(options.out);
+  fmt::print("{}", table);
+  log_info(fmt::format("table: {}", (options.out / "febio_comparison.csv").string()));
+}
+
 } // namespace
 
 void add_verify_command(CLI::App& app)
@@ -414,6 +490,16 @@ void add_verify_command(CLI::App& app)
                    "flexion: the quasi-static angles, deg (default 0,20,...,140)")
       ->delimiter(',');
   stability->callback([stability_options] { run_stability(*stability_options); });
+
+  auto febio_options = std::make_shared<FebioOptions>();
+  auto* febio = verify->add_subcommand(
+      "febio", "the knee flexion by ligsim and by FEBio on the same settings "
+               "(febio_comparison.csv, knee.feb and FEBio's knee.log)");
+  add_flexion_options(*febio, febio_options->flexion, false);
+  febio->add_option("--febio", febio_options->febio, "FEBio 4's solver executable (febio4)")
+      ->required();
+  febio->add_option("--out", febio_options->out, "output folder")->required();
+  febio->callback([febio_options] { run_verify_febio(*febio_options); });
 }
 
 } // namespace ligsim::cli

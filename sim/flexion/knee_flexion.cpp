@@ -46,23 +46,11 @@ void measure(Measuring& m, double t, const Eigen::VectorXd& x, const Eigen::Vect
   const HyperelasticBody& body = m.body;
   if (m.contact)
     result.contact = m.contact->measure(x, t, m.contact_on, result.gap_mm, result.pressure_mpa);
-  double volume = 0.0;
-  double weighted_stretch = 0.0;
-  double failed_volume = 0.0;
-  result.max_fiber_stretch = 0.0;
-  result.min_j = INFINITY;
-  for (Eigen::Index e = 0; e < body.element_count(); ++e) {
-    const ElementMeasures measures = body.measures(x, e);
-    const double v0 = body.shape(e).V0;
-    volume += v0;
-    weighted_stretch += v0 * measures.fiber_stretch;
-    if (measures.fiber_stretch - 1.0 > m.failure_strain)
-      failed_volume += v0;
-    result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
-    result.min_j = std::min(result.min_j, measures.J);
-  }
-  result.mean_fiber_stretch = weighted_stretch / volume;
-  result.failed_volume_fraction = failed_volume / volume;
+  const FiberMeasures fibers = measure_fibers(body, x, m.failure_strain);
+  result.mean_fiber_stretch = fibers.mean_fiber_stretch;
+  result.max_fiber_stretch = fibers.max_fiber_stretch;
+  result.min_j = fibers.min_j;
+  result.failed_volume_fraction = fibers.failed_volume_fraction;
   if (m.centerline) {
     result.length_mm = m.centerline->length(x);
     if (std::isnan(m.reference_length_mm))
@@ -224,6 +212,28 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
 }
 
 } // namespace
+
+FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x,
+                             double failure_strain)
+{
+  FiberMeasures result;
+  double volume = 0.0;
+  double weighted_stretch = 0.0;
+  double failed_volume = 0.0;
+  for (Eigen::Index e = 0; e < body.element_count(); ++e) {
+    const ElementMeasures measures = body.measures(x, e);
+    const double v0 = body.shape(e).V0;
+    volume += v0;
+    weighted_stretch += v0 * measures.fiber_stretch;
+    if (measures.fiber_stretch - 1.0 > failure_strain)
+      failed_volume += v0;
+    result.max_fiber_stretch = std::max(result.max_fiber_stretch, measures.fiber_stretch);
+    result.min_j = std::min(result.min_j, measures.J);
+  }
+  result.mean_fiber_stretch = weighted_stretch / volume;
+  result.failed_volume_fraction = failed_volume / volume;
+  return result;
+}
 
 FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain)
 {

@@ -45,6 +45,20 @@ SweepSteps angle_steps(const std::vector<double>& angles_deg);
 /// The steps of a resolved knee motion.
 SweepSteps motion_steps(const KneeMotion& motion);
 
+/// Fiber stretch |F a| (with the in-situ pre-stretch) and volume change over the elements.
+struct FiberMeasures {
+  double mean_fiber_stretch = 0.0; ///< weighted by rest volume
+  double max_fiber_stretch = 0.0;
+  double min_j = INFINITY;
+  /// Share of the rest volume whose fiber strain (stretch - 1) exceeds the failure strain.
+  double failed_volume_fraction = 0.0;
+};
+
+/// The fiber measures of state `x` (flat positions, mm), with the share beyond
+/// `failure_strain`.
+FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x,
+                             double failure_strain = INFINITY);
+
 /// The state at one angle of the sweep.
 struct AngleResult {
   double angle_deg = 0.0;

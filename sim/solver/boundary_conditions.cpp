@@ -2,8 +2,6 @@
 
 #include "common/error.hpp"
 
-#include <Eigen/Geometry>
-
 namespace ligsim::sim {
 
 Eigen::Isometry3d RigidMotion::pose(double t) const

@@ -1,0 +1,451 @@
+#include "sim/febio/feb_writer.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "sim/contact/contact_surface.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iterator>
+
+namespace ligsim::sim {
+
+namespace {
+
+using Buffer = fmt::memory_buffer;
+
+/// Shortest text that reads back to the same double.
+std::string number(double value)
+{
+  return fmt::format("{}", value);
+}
+
+std::string vector3(const Eigen::Vector3d& v)
+{
+  return fmt::format("{},{},{}", number(v.x()), number(v.y()), number(v.z()));
+}
+
+/// Text for an XML comment: "--" may not appear in one.
+std::string comment_text(std::string text)
+{
+  for (std::size_t at = text.find("--"); at != std::string::npos; at = text.find("--"))
+    text.replace(at, 2, "- -");
+  return text;
+}
+
+void validate(const FebProblem& problem)
+{
+  const Eigen::Index nodes = problem.ligament.V.rows();
+  const Eigen::Index tets = problem.ligament.T.rows();
+  if (tets == 0 || nodes == 0)
+    fail("FEBio export: the ligament has no tets");
+  if (problem.step_labels.empty())
+    fail("FEBio export: no steps (no flexion angles)");
+  if (!problem.material.fiber)
+    fail("FEBio export: the material has no fibers (FEBio's trans iso Mooney-Rivlin needs them)");
+  if (problem.fiber_directions.rows() != tets)
+    fail("FEBio export: {} fiber directions for {} tets", problem.fiber_directions.rows(), tets);
+  for (Eigen::Index e = 0; e < tets; ++e)
+    if (!(std::abs(problem.fiber_directions.row(e).norm() - 1.0) < 1e-6))
+      fail("FEBio export: the fiber direction of tet {} is not a unit vector", e);
+  if (!(problem.in_situ_strain > -1.0))
+    fail("FEBio export: in-situ strain {} is not above -1", problem.in_situ_strain);
+  std::vector<int> owner(static_cast<std::size_t>(nodes), -1);
+  for (std::size_t b = 0; b < problem.bones.size(); ++b) {
+    const FebRigidBody& bone = problem.bones[b];
+    if (bone.surface.F.rows() == 0)
+      fail("FEBio export: the {} has no surface triangles", bone.name);
+    if (!bone.poses.empty() && bone.poses.size() != problem.step_labels.size())
+      fail("FEBio export: the {} has {} poses for {} steps", bone.name, bone.poses.size(),
+           problem.step_labels.size());
+    for (int node : bone.attached_nodes) {
+      if (node < 0 || node >= nodes)
+        fail("FEBio export: the {} attachment names node {}, but the ligament has {} nodes",
+             bone.name, node, nodes);
+      int& first = owner[static_cast<std::size_t>(node)];
+      if (first >= 0 && first != static_cast<int>(b))
+        fail("FEBio export: node {} is bound to the {} and the {}", node,
+             problem.bones[static_cast<std::size_t>(first)].name, bone.name);
+      first = static_cast<int>(b);
+    }
+  }
+}
+
+void write_control(Buffer& out, const FebProblem& problem)
+{
+  const FebSolverSettings& s = problem.solver;
+  fmt::format_to(std::back_inserter(out),
+                 "  <Control>\n"
+                 "    <analysis>STATIC</analysis>\n"
+                 "    <time_steps>{}</time_steps>\n"
+                 "    <step_size>1</step_size>\n"
+                 "    <plot_level>PLOT_MUST_POINTS</plot_level>\n"
+                 "    <output_level>OUTPUT_MUST_POINTS</output_level>\n"
+                 "    <time_stepper type=\"default\">\n"
+                 "      <max_retries>{}</max_retries>\n"
+                 "      <opt_iter>10</opt_iter>\n"
+                 "      <dtmin>{}</dtmin>\n"
+                 "      <dtmax lc=\"1\">1</dtmax>\n"
+                 "    </time_stepper>\n"
+                 "    <solver type=\"solid\">\n"
+                 "      <symmetric_stiffness>symmetric</symmetric_stiffness>\n"
+                 "      <dtol>{}</dtol>\n"
+                 "      <etol>{}</etol>\n"
+                 "      <rtol>{}</rtol>\n"
+                 "      <lstol>0.9</lstol>\n"
+                 "      <max_refs>{}</max_refs>\n"
+                 "      <diverge_reform>1</diverge_reform>\n"
+                 "      <optimize_bw>1</optimize_bw>\n"
+                 "      <reform_each_time_step>1</reform_each_time_step>\n"
+                 "      <qn_method type=\"BFGS\">\n"
+                 "        <max_ups>0</max_ups>\n"
+                 "      </qn_method>\n"
+                 "    </solver>\n"
+                 "  </Control>\n",
+                 problem.step_labels.size(), s.max_retries, number(s.min_step),
+                 number(s.displacement_tolerance), number(s.energy_tolerance),
+                 number(s.residual_tolerance), s.max_reformations);
+}
+
+void write_materials(Buffer& out, const FebProblem& problem)
+{
+  const MaterialParameters& m = problem.material;
+  const FiberParameters& f = *m.fiber;
+  const std::string pressure_model = m.volumetric == VolumetricLaw::jm1 ? "Abaqus" : "default";
+  const auto it = std::back_inserter(out);
+  fmt::format_to(it, "  <Material>\n");
+  if (problem.in_situ_strain == 0.0) {
+    fmt::format_to(it,
+                   "    <material id=\"1\" name=\"ligament\" type=\"trans iso Mooney-Rivlin\">\n"
+                   "      <c1>{}</c1>\n      <c2>0</c2>\n      <c3>{}</c3>\n      <c4>{}</c4>\n"
+                   "      <c5>{}</c5>\n      <lam_max>{}</lam_max>\n      <k>{}</k>\n"
+                   "      <pressure_model>{}</pressure_model>\n"
+                   "      <fiber type=\"map\">fiber</fiber>\n"
+                   "    </material>\n",
+                   number(0.5 * m.mu_mpa), number(f.c3_mpa), number(f.c4), number(f.c5_mpa),
+                   number(f.lambda_star), number(m.bulk_modulus_mpa), pressure_model);
+  } else {
+    // The same energy as trans iso Mooney-Rivlin (Mooney-Rivlin plus the uncoupled Weiss fiber),
+    // split so that the in-situ stretch pre-stretches the fiber alone, as sim/material does.
+    fmt::format_to(it,
+                   "    <material id=\"1\" name=\"ligament\" type=\"uncoupled solid mixture\">\n"
+                   "      <k>{}</k>\n"
+                   "      <pressure_model>{}</pressure_model>\n"
+                   "      <solid type=\"Mooney-Rivlin\">\n"
+                   "        <c1>{}</c1>\n        <c2>0</c2>\n        <k>0</k>\n"
+                   "      </solid>\n"
+                   "      <solid type=\"uncoupled prestrain elastic\">\n"
+                   "        <elastic type=\"uncoupled fiber-exp-linear\">\n"
+                   "          <c3>{}</c3>\n          <c4>{}</c4>\n          <c5>{}</c5>\n"
+                   "          <lambda>{}</lambda>\n          <k>0</k>\n"
+                   "          <fiber type=\"map\">fiber</fiber>\n"
+                   "        </elastic>\n"
+                   "        <prestrain type=\"in-situ stretch\">\n"
+                   "          <stretch>{}</stretch>\n"
+                   "          <isochoric>1</isochoric>\n"
+                   "        </prestrain>\n"
+                   "      </solid>\n"
+                   "    </material>\n",
+                   number(m.bulk_modulus_mpa), pressure_model, number(0.5 * m.mu_mpa),
+                   number(f.c3_mpa), number(f.c4), number(f.c5_mpa), number(f.lambda_star),
+                   number(1.0 + problem.in_situ_strain));
+  }
+  for (std::size_t b = 0; b < problem.bones.size(); ++b)
+    fmt::format_to(it,
+                   "    <material id=\"{}\" name=\"{}\" type=\"rigid body\">\n"
+                   "      <density>1</density>\n"
+                   "      <center_of_mass>{}</center_of_mass>\n"
+                   "    </material>\n",
+                   feb_material_id_of_bone(b), problem.bones[b].name,
+                   vector3(problem.bones[b].center_mm));
+  fmt::format_to(it, "  </Material>\n");
+}
+
+void write_node_list(Buffer& out, const std::vector<int>& ids)
+{
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    fmt::format_to(std::back_inserter(out), "{}{}", ids[i],
+                   i + 1 == ids.size() ? "" : (i % 16 == 15 ? ",\n      " : ","));
+}
+
+/// The ligament's boundary faces (outward) with at least one node not bound to a bone.
+Triangles free_faces(const FebProblem& problem)
+{
+  std::vector<bool> bound(static_cast<std::size_t>(problem.ligament.V.rows()), false);
+  for (const FebRigidBody& bone : problem.bones)
+    for (int node : bone.attached_nodes)
+      bound[static_cast<std::size_t>(node)] = true;
+  const Triangles boundary = boundary_surface(problem.ligament).faces;
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index f = 0; f < boundary.rows(); ++f) {
+    bool all_bound = true;
+    for (int c = 0; c < 3; ++c)
+      all_bound = all_bound && bound[static_cast<std::size_t>(boundary(f, c))];
+    if (!all_bound)
+      kept.push_back(f);
+  }
+  Triangles faces(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    faces.row(static_cast<Eigen::Index>(i)) = boundary.row(kept[i]);
+  return faces;
+}
+
+void write_mesh(Buffer& out, const FebProblem& problem)
+{
+  const auto it = std::back_inserter(out);
+  const TetMesh& mesh = problem.ligament;
+  const Eigen::Index nodes = mesh.V.rows();
+  fmt::format_to(it, "  <Mesh>\n    <Nodes name=\"ligament\">\n");
+  for (Eigen::Index n = 0; n < nodes; ++n)
+    fmt::format_to(it, "      <node id=\"{}\">{}</node>\n", n + 1,
+                   vector3(mesh.V.row(n).transpose()));
+  fmt::format_to(it, "    </Nodes>\n");
+  // Bone nodes and triangles are numbered on after the ligament's.
+  std::vector<int> node_offset;
+  std::vector<int> element_offset;
+  int next_node = static_cast<int>(nodes);
+  int next_element = static_cast<int>(mesh.T.rows());
+  for (const FebRigidBody& bone : problem.bones) {
+    node_offset.push_back(next_node);
+    element_offset.push_back(next_element);
+    fmt::format_to(it, "    <Nodes name=\"{}\">\n", bone.name);
+    for (Eigen::Index n = 0; n < bone.surface.V.rows(); ++n)
+      fmt::format_to(it, "      <node id=\"{}\">{}</node>\n", next_node + n + 1,
+                     vector3(bone.surface.V.row(n).transpose()));
+    fmt::format_to(it, "    </Nodes>\n");
+    next_node += static_cast<int>(bone.surface.V.rows());
+    next_element += static_cast<int>(bone.surface.F.rows());
+  }
+  fmt::format_to(it, "    <Elements type=\"tet4\" name=\"ligament\">\n");
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+    fmt::format_to(it, "      <elem id=\"{}\">{},{},{},{}</elem>\n", t + 1, mesh.T(t, 0) + 1,
+                   mesh.T(t, 1) + 1, mesh.T(t, 2) + 1, mesh.T(t, 3) + 1);
+  fmt::format_to(it, "    </Elements>\n");
+  for (std::size_t b = 0; b < problem.bones.size(); ++b) {
+    const FebRigidBody& bone = problem.bones[b];
+    fmt::format_to(it, "    <Elements type=\"tri3\" name=\"{}\">\n", bone.name);
+    for (Eigen::Index f = 0; f < bone.surface.F.rows(); ++f)
+      fmt::format_to(it, "      <elem id=\"{}\">{},{},{}</elem>\n", element_offset[b] + f + 1,
+                     node_offset[b] + bone.surface.F(f, 0) + 1,
+                     node_offset[b] + bone.surface.F(f, 1) + 1,
+                     node_offset[b] + bone.surface.F(f, 2) + 1);
+    fmt::format_to(it, "    </Elements>\n");
+  }
+  fmt::format_to(it, "    <NodeSet name=\"ligament_nodes\">1:{}</NodeSet>\n", nodes);
+  for (const FebRigidBody& bone : problem.bones) {
+    if (bone.attached_nodes.empty())
+      continue;
+    std::vector<int> ids;
+    for (int node : bone.attached_nodes)
+      ids.push_back(node + 1);
+    fmt::format_to(it, "    <NodeSet name=\"{}_attachment\">\n      ", bone.name);
+    write_node_list(out, ids);
+    fmt::format_to(it, "\n    </NodeSet>\n");
+  }
+  if (problem.contact) {
+    const Triangles faces = free_faces(problem);
+    fmt::format_to(it, "    <Surface name=\"ligament_free_surface\">\n");
+    for (Eigen::Index f = 0; f < faces.rows(); ++f)
+      fmt::format_to(it, "      <tri3 id=\"{}\">{},{},{}</tri3>\n", f + 1, faces(f, 0) + 1,
+                     faces(f, 1) + 1, faces(f, 2) + 1);
+    fmt::format_to(it, "    </Surface>\n");
+    for (std::size_t b = 0; b < problem.bones.size(); ++b) {
+      const FebRigidBody& bone = problem.bones[b];
+      if (!bone.contact)
+        continue;
+      fmt::format_to(it, "    <Surface name=\"{}_surface\">\n", bone.name);
+      for (Eigen::Index f = 0; f < bone.surface.F.rows(); ++f)
+        fmt::format_to(it, "      <tri3 id=\"{}\">{},{},{}</tri3>\n", f + 1,
+                       node_offset[b] + bone.surface.F(f, 0) + 1,
+                       node_offset[b] + bone.surface.F(f, 1) + 1,
+                       node_offset[b] + bone.surface.F(f, 2) + 1);
+      fmt::format_to(it, "    </Surface>\n");
+      fmt::format_to(it,
+                     "    <SurfacePair name=\"ligament_on_{0}\">\n"
+                     "      <primary>ligament_free_surface</primary>\n"
+                     "      <secondary>{0}_surface</secondary>\n"
+                     "    </SurfacePair>\n",
+                     bone.name);
+    }
+  }
+  fmt::format_to(it, "  </Mesh>\n");
+}
+
+void write_domains_and_data(Buffer& out, const FebProblem& problem)
+{
+  const auto it = std::back_inserter(out);
+  fmt::format_to(it, "  <MeshDomains>\n    <SolidDomain name=\"ligament\" mat=\"ligament\"/>\n");
+  for (const FebRigidBody& bone : problem.bones)
+    fmt::format_to(it, "    <ShellDomain name=\"{0}\" mat=\"{0}\"/>\n", bone.name);
+  fmt::format_to(it, "  </MeshDomains>\n  <MeshData>\n"
+                     "    <ElementData name=\"fiber\" elem_set=\"ligament\" data_type=\"vec3\">\n");
+  for (Eigen::Index e = 0; e < problem.fiber_directions.rows(); ++e)
+    fmt::format_to(it, "      <e lid=\"{}\">{}</e>\n", e + 1,
+                   vector3(problem.fiber_directions.row(e).transpose()));
+  fmt::format_to(it, "    </ElementData>\n  </MeshData>\n");
+}
+
+/// The bones' attachments, the fixed bones and the moving bones' six degrees of freedom, each
+/// following its own load curve (curve 1 is the must-point curve of the time stepper).
+void write_boundary_and_rigid(Buffer& out, const FebProblem& problem,
+                              std::vector<std::vector<double>>& curves)
+{
+  const auto it = std::back_inserter(out);
+  fmt::format_to(it, "  <Boundary>\n");
+  for (const FebRigidBody& bone : problem.bones)
+    if (!bone.attached_nodes.empty())
+      fmt::format_to(it,
+                     "    <bc name=\"{0}_attachment\" node_set=\"{0}_attachment\" "
+                     "type=\"rigid\">\n      <rb>{0}</rb>\n    </bc>\n",
+                     bone.name);
+  fmt::format_to(it, "  </Boundary>\n  <Rigid>\n");
+  static constexpr const char* translations[3] = {"x", "y", "z"};
+  static constexpr const char* rotations[3] = {"Ru", "Rv", "Rw"};
+  for (const FebRigidBody& bone : problem.bones) {
+    if (bone.poses.empty()) {
+      fmt::format_to(it,
+                     "    <rigid_bc name=\"{0}_fixed\" type=\"rigid_fixed\">\n"
+                     "      <rb>{0}</rb>\n"
+                     "      <Rx_dof>1</Rx_dof>\n      <Ry_dof>1</Ry_dof>\n"
+                     "      <Rz_dof>1</Rz_dof>\n      <Ru_dof>1</Ru_dof>\n"
+                     "      <Rv_dof>1</Rv_dof>\n      <Rw_dof>1</Rw_dof>\n"
+                     "    </rigid_bc>\n",
+                     bone.name);
+      continue;
+    }
+    std::vector<Eigen::Matrix<double, 6, 1>> dofs;
+    for (const Eigen::Isometry3d& pose : bone.poses)
+      dofs.push_back(feb_rigid_dofs(pose, bone.center_mm));
+    for (int d = 0; d < 6; ++d) {
+      std::vector<double> curve;
+      for (const auto& step : dofs)
+        curve.push_back(step(d));
+      curves.push_back(curve);
+      const bool turn = d >= 3;
+      fmt::format_to(it,
+                     "    <rigid_bc name=\"{0}_{1}\" type=\"{2}\">\n"
+                     "      <rb>{0}</rb>\n"
+                     "      <dof>{1}</dof>\n"
+                     "      <value lc=\"{3}\">1</value>\n"
+                     "      <relative>0</relative>\n"
+                     "    </rigid_bc>\n",
+                     bone.name, turn ? rotations[d - 3] : translations[d],
+                     turn ? "rigid_rotation" : "rigid_displacement", curves.size() + 1);
+    }
+  }
+  fmt::format_to(it, "  </Rigid>\n");
+}
+
+void write_contact(Buffer& out, const FebProblem& problem)
+{
+  if (!problem.contact)
+    return;
+  const auto it = std::back_inserter(out);
+  fmt::format_to(it, "  <Contact>\n");
+  for (const FebRigidBody& bone : problem.bones)
+    if (bone.contact)
+      fmt::format_to(it,
+                     "    <contact name=\"ligament_on_{0}\" type=\"sliding-elastic\" "
+                     "surface_pair=\"ligament_on_{0}\">\n"
+                     "      <laugon>PENALTY</laugon>\n"
+                     "      <penalty>{1}</penalty>\n"
+                     "      <auto_penalty>1</auto_penalty>\n"
+                     "      <two_pass>0</two_pass>\n"
+                     "      <search_tol>{2}</search_tol>\n"
+                     "      <symmetric_stiffness>1</symmetric_stiffness>\n"
+                     "      <fric_coeff>0</fric_coeff>\n"
+                     "    </contact>\n",
+                     bone.name, number(problem.contact_settings.penalty),
+                     number(problem.contact_settings.search_tol));
+  fmt::format_to(it, "  </Contact>\n");
+}
+
+void write_load_data(Buffer& out, const FebProblem& problem,
+                     const std::vector<std::vector<double>>& curves)
+{
+  const auto it = std::back_inserter(out);
+  const std::size_t steps = problem.step_labels.size();
+  // Curve 1: the step ends are must points (the time stepper lands on each of them).
+  fmt::format_to(it, "  <LoadData>\n"
+                     "    <load_controller id=\"1\" name=\"must_points\" type=\"loadcurve\">\n"
+                     "      <interpolate>STEP</interpolate>\n      <points>\n");
+  for (std::size_t k = 0; k < steps; ++k)
+    fmt::format_to(it, "        <pt>{},1</pt>\n", k + 1);
+  fmt::format_to(it, "      </points>\n    </load_controller>\n");
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    fmt::format_to(it,
+                   "    <load_controller id=\"{}\" type=\"loadcurve\">\n"
+                   "      <interpolate>LINEAR</interpolate>\n"
+                   "      <extend>CONSTANT</extend>\n"
+                   "      <points>\n        <pt>0,0</pt>\n",
+                   c + 2);
+    for (std::size_t k = 0; k < steps; ++k)
+      fmt::format_to(it, "        <pt>{},{}</pt>\n", k + 1, number(curves[c][k]));
+    fmt::format_to(it, "      </points>\n    </load_controller>\n");
+  }
+  fmt::format_to(it, "  </LoadData>\n");
+}
+
+void write_output(Buffer& out, const FebProblem& problem)
+{
+  fmt::format_to(std::back_inserter(out),
+                 "  <Output>\n"
+                 "    <plotfile type=\"febio\">\n"
+                 "      <var type=\"displacement\"/>\n"
+                 "      <var type=\"stress\"/>\n"
+                 "      <var type=\"relative volume\"/>\n"
+                 "      <var type=\"strain energy density\"/>\n"
+                 "{}"
+                 "    </plotfile>\n"
+                 "    <logfile>\n"
+                 "      <node_data data=\"x;y;z\" node_set=\"ligament_nodes\"/>\n"
+                 "      <rigid_body_data data=\"x;y;z;qx;qy;qz;qw;Fx;Fy;Fz;Mx;My;Mz\"/>\n"
+                 "      <element_data data=\"sed\" elem_set=\"ligament\"/>\n"
+                 "    </logfile>\n"
+                 "  </Output>\n",
+                 problem.contact ? "      <var type=\"contact pressure\"/>\n"
+                                   "      <var type=\"contact gap\"/>\n"
+                                 : "");
+}
+
+} // namespace
+
+Eigen::Matrix<double, 6, 1> feb_rigid_dofs(const Eigen::Isometry3d& pose,
+                                           const Eigen::Vector3d& center_mm)
+{
+  const Eigen::AngleAxisd turn(pose.linear());
+  Eigen::Matrix<double, 6, 1> dofs;
+  dofs.head<3>() = pose * center_mm - center_mm;
+  dofs.tail<3>() = turn.angle() * turn.axis();
+  return dofs;
+}
+
+std::string feb_text(const FebProblem& problem)
+{
+  validate(problem);
+  Buffer out;
+  const auto it = std::back_inserter(out);
+  fmt::format_to(it, "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n");
+  for (const std::string& note : problem.notes)
+    fmt::format_to(it, "<!-- {} -->\n", comment_text(note));
+  fmt::format_to(it, "<febio_spec version=\"4.0\">\n  <Module type=\"solid\"/>\n");
+  write_control(out, problem);
+  write_materials(out, problem);
+  write_mesh(out, problem);
+  write_domains_and_data(out, problem);
+  std::vector<std::vector<double>> curves;
+  write_boundary_and_rigid(out, problem, curves);
+  write_contact(out, problem);
+  write_load_data(out, problem, curves);
+  write_output(out, problem);
+  fmt::format_to(it, "</febio_spec>\n");
+  return fmt::to_string(out);
+}
+
+void write_feb(const std::filesystem::path& file, const FebProblem& problem)
+{
+  write_text_atomically(file, feb_text(problem));
+}
+
+} // namespace ligsim::sim

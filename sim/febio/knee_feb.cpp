@@ -1,0 +1,115 @@
+#include "sim/febio/knee_feb.hpp"
+
+#include "sim/flexion/femur_poses.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace ligsim::sim {
+
+namespace {
+
+bool in_contact(const ContactConfig& contact, const std::string& bone)
+{
+  return contact.bones.empty() ||
+         std::find(contact.bones.begin(), contact.bones.end(), bone) != contact.bones.end();
+}
+
+std::string joined(const std::vector<double>& values)
+{
+  std::string text;
+  for (double v : values)
+    text += (text.empty() ? "" : ", ") + fmt::format("{}", v);
+  return text;
+}
+
+} // namespace
+
+FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& settings,
+                            const BoundaryConditions& conditions, const SweepSteps& steps,
+                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings)
+{
+  FebProblem problem;
+  problem.ligament = model.mesh;
+  problem.fiber_directions = model.fiber_directions;
+  problem.material = settings.material;
+  problem.in_situ_strain = settings.in_situ_strain;
+  problem.step_labels = steps.angles_deg;
+  problem.contact = settings.contact.enabled.value_or(true);
+
+  FebRigidBody femur;
+  femur.name = "femur";
+  femur.surface = triangle_surface(model.femur, "femur.vtp");
+  femur.center_mm = center_mm;
+  femur.attached_nodes = model.femur_nodes;
+  femur.poses = femur_poses(conditions, steps);
+  femur.contact = problem.contact && in_contact(settings.contact, "femur");
+  FebRigidBody tibia;
+  tibia.name = "tibia";
+  tibia.surface = triangle_surface(model.tibia, "tibia.vtp");
+  tibia.center_mm = tibia.surface.V.colwise().mean().transpose();
+  tibia.attached_nodes = model.tibia_nodes;
+  tibia.contact = problem.contact && in_contact(settings.contact, "tibia");
+  problem.bones = {femur, tibia};
+
+  const MaterialParameters& m = settings.material;
+  std::vector<std::string>& notes = problem.notes;
+  notes.push_back("Written by `ligsim export febio` from the knee model in " +
+                  settings.model_dir.string() + ": the problem `ligsim flexion` solves.");
+  notes.push_back("Units: mm, N, MPa. Step k (time k) is the flexion angle number k of: " +
+                  joined(steps.angles_deg) +
+                  " deg; the femur's pose is prescribed exactly at each time (its six rigid "
+                  "degrees of freedom follow load curves 2-7), the tibia is fixed.");
+  notes.push_back(fmt::format(
+      "Material: Weiss' transversely isotropic law, mu = {} MPa (c1 = mu/2), K = {} MPa with {} "
+      "(pressure_model {}), fiber c3 = {} MPa, c4 = {}, c5 = {} MPa, lambda* = {}; fiber "
+      "directions per tet in MeshData 'fiber'.",
+      m.mu_mpa, m.bulk_modulus_mpa,
+      m.volumetric == VolumetricLaw::jm1 ? "U = K/2 (J-1)^2" : "U = K/2 (ln J)^2",
+      m.volumetric == VolumetricLaw::jm1 ? "Abaqus" : "default", m.fiber->c3_mpa, m.fiber->c4,
+      m.fiber->c5_mpa, m.fiber->lambda_star));
+  if (settings.in_situ_strain != 0.0)
+    notes.push_back(fmt::format(
+        "In-situ strain {}: the fiber term alone is pre-stretched by {} along the fiber "
+        "(isochoric in-situ stretch of FEBio's uncoupled prestrain material), the ground "
+        "substance is not; together the mixture is trans iso Mooney-Rivlin with |a| = 1 + "
+        "strain, as in ligsim. FEBio reports no strain energy for its prestrain material: its "
+        "logged sed then holds the ground substance and volume terms only.",
+        settings.in_situ_strain, 1.0 + settings.in_situ_strain));
+  if (m.fiber->convention == FiberConvention::paper) {
+    const std::string warning =
+        "the model's fiber convention is 'paper' (the expressions give dW/dlambda), but FEBio "
+        "implements only Weiss' convention (they give lambda dW/dlambda): this file uses "
+        "FEBio's law with the same constants, a fiber softer by the factor lambda than the "
+        "model's; set convention = \"weiss\" for the same problem in both";
+    warnings.push_back(warning);
+    notes.push_back("WARNING: " + warning + ".");
+  }
+  notes.push_back(
+      problem.contact
+          ? "Contact: frictionless sliding-elastic (penalty, automatic penalty) of the ligament's "
+            "free surface on the bones. Its exact stiffness is not symmetric, and FEBio's skyline "
+            "solver (the direct solver of a build without MKL) takes symmetric matrices only; "
+            "the contact is asked for its symmetrized stiffness (symmetric_stiffness 1), which "
+            "leaves the residual, hence the answer, unchanged and only slows Newton's "
+            "convergence. BiCGSTAB on the exact matrix failed on the shipped MCL (no "
+            "preconditioner in this build)."
+          : "No contact: the stiffness is symmetric, so FEBio's default skyline solver works.");
+  const FebSolverSettings& solver = problem.solver;
+  notes.push_back(fmt::format(
+      "Solver: full Newton (BFGS with max_ups 0: a reformation every iteration), dtol {}, etol "
+      "{}, rtol {}; optimize_bw renumbers the equations for a narrow skyline profile "
+      "(without it FEBio spent over 3 minutes on the shipped MCL's first step, with it under a "
+      "minute on the whole sweep). The .log holds the ligament's node positions (record 1), the "
+      "rigid bodies' "
+      "positions, rotations, reaction forces and moments (record 2) and the tets' strain energy "
+      "density (record 3) at each step.",
+      solver.displacement_tolerance, solver.energy_tolerance, solver.residual_tolerance));
+  if (settings.mode == FlexionMode::interactive)
+    notes.push_back("The config's interactive mode has no FEBio counterpart here: the file "
+                    "solves the quasi-static sweep.");
+  return problem;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,134 @@
+/// `ligsim export febio` and `ligsim verify febio` end to end on a coarse synthetic band (the
+/// FEBio run is skipped, saying so, where FEBio is not given: -DLIGSIM_FEBIO or $LIGSIM_FEBIO).
+
+#include "tests/pipeline/cli_runner.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string febio()
+{
+  const char* variable = std::getenv("LIGSIM_FEBIO");
+  return variable && *variable ? variable : LIGSIM_FEBIO_EXECUTABLE;
+}
+
+std::string text(const fs::path& file)
+{
+  std::ifstream in(file);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// A coarse band model (about 1,700 tets), built once per test process.
+const fs::path& band_model()
+{
+  static const fs::path model = [] {
+    const std::string pid = std::to_string(::getpid());
+    const fs::path shape = fresh_folder("export_band_shape_" + pid);
+    const fs::path out = fresh_folder("export_band_model_" + pid);
+    EXPECT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+    const CliResult built = run_ligsim(
+        "build --surface " + (shape / "surface.stl").string() + " --femur " +
+        (shape / "femur.stl").string() + " --tibia " + (shape / "tibia.stl").string() +
+        " --voxel 0.4 --cell-size 3 --facet-size 2 --facet-distance 0.3 --out " + out.string());
+    EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
+    return out;
+  }();
+  return model;
+}
+
+/// "--axis" through the point and along the direction the model stage chose for the band.
+std::string band_axis()
+{
+  std::ifstream in(band_model() / "summary.json");
+  const nlohmann::json axis =
+      nlohmann::json::parse(in)["stages"]["model"]["figures"]["flexion_axis"];
+  std::ostringstream out;
+  out.precision(17);
+  out << "--axis ";
+  for (int i = 0; i < 3; ++i)
+    out << axis["point_mm"][i].get<double>() << ",";
+  for (int i = 0; i < 3; ++i)
+    out << axis["point_mm"][i].get<double>() + axis["direction"][i].get<double>()
+        << (i < 2 ? "," : "");
+  return out.str();
+}
+
+} // namespace
+
+TEST(ExportCli, FebioFileHoldsTheModel)
+{
+  const fs::path out = fresh_folder("export_feb") / "band.feb";
+  const CliResult result = run_ligsim("export febio --model " + band_model().string() + " " +
+                                      band_axis() + " --angles 0,45 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  // The shipped defaults use the paper's convention: the user is told FEBio's differs.
+  EXPECT_NE(result.stderr_text.find("warning: the model's fiber convention is 'paper'"),
+            std::string::npos);
+  const std::string feb = text(out);
+  std::ifstream summary_file(band_model() / "summary.json");
+  const nlohmann::json figures = nlohmann::json::parse(summary_file)["stages"]["model"]["figures"];
+  EXPECT_NE(feb.find("<node id=\"" + std::to_string(figures["nodes"].get<int>()) + "\">"),
+            std::string::npos);
+  EXPECT_NE(feb.find("<elem id=\"" + std::to_string(figures["tets"].get<int>()) + "\">"),
+            std::string::npos);
+  EXPECT_NE(feb.find("<time_steps>2</time_steps>"), std::string::npos);
+  EXPECT_NE(feb.find("type=\"sliding-elastic\""), std::string::npos); // contact on by default
+}
+
+TEST(ExportCli, RejectsAnOutputThatIsNotAFebFile)
+{
+  const fs::path out = fresh_folder("export_bad") / "band.txt";
+  const CliResult result = run_ligsim("export febio --model " + band_model().string() + " " +
+                                      band_axis() + " --out " + out.string());
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.stderr_text.find("ending in .feb"), std::string::npos) << result.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(ExportCli, VerifyFebioWritesTheComparison)
+{
+  if (febio().empty())
+    GTEST_SKIP() << "FEBio not given: configure with -DLIGSIM_FEBIO=/path/to/febio4 or set "
+                    "LIGSIM_FEBIO to run `ligsim verify febio`";
+  const fs::path out = fresh_folder("verify_febio");
+  const CliResult result =
+      run_ligsim("verify febio --model " + band_model().string() + " " + band_axis() +
+                 " --angles 0,45 --contact off --febio " + febio() + " --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  for (const char* file :
+       {"knee.feb", "knee.log", "febio_comparison.csv", "febio_comparison.md", "summary.json"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  std::ifstream csv(out / "febio_comparison.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "angle_deg,ours_femur_force_n,febio_femur_force_n,ours_energy_mj,"
+                  "febio_energy_mj,ours_mean_fiber_stretch,febio_mean_fiber_stretch,"
+                  "ours_wall_s,febio_wall_s");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> v;
+    std::stringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');)
+      v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 9u) << line;
+    EXPECT_NEAR(v[1], v[2], 1e-6 * v[2]) << line;
+    EXPECT_NEAR(v[3], v[4], 1e-6 * v[4]) << line;
+    EXPECT_NEAR(v[5], v[6], 1e-8) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);
+}

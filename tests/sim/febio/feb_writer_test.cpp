@@ -1,0 +1,268 @@
+/// The .feb file itself, without FEBio: well-formed XML, the model's counts, nodes and tets that
+/// read back exactly, the femur's pose as FEBio's rigid degrees of freedom, the material and
+/// contact the settings ask for, and the problems it refuses.
+
+#include "common/error.hpp"
+#include "sim/febio/feb_writer.hpp"
+#include "sim/febio/knee_feb.hpp"
+#include "sim/flexion/femur_poses.hpp"
+#include "tests/sim/febio/bar_knee.hpp"
+
+#include <gtest/gtest.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLUtilities.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace ligsim;
+using namespace ligsim::sim;
+using namespace ligsim::test;
+
+namespace {
+
+FebProblem bar_problem(const FlexionSettings& settings,
+                       std::vector<std::string>* warnings = nullptr)
+{
+  const KneeModel model = bar_knee();
+  std::vector<std::string> ignored;
+  return knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
+                          angle_steps(settings.angles_deg), bar_axis().point_mm,
+                          warnings ? *warnings : ignored);
+}
+
+/// The parsed document (the test fails on malformed XML).
+vtkSmartPointer<vtkXMLDataElement> parsed(const std::string& text)
+{
+  vtkSmartPointer<vtkXMLDataElement> root;
+  root.TakeReference(vtkXMLUtilities::ReadElementFromString(text.c_str()));
+  return root;
+}
+
+/// The child of `parent` called `name` whose attribute `key` is `value` (any, when key is empty).
+vtkXMLDataElement* child(vtkXMLDataElement* parent, const std::string& name,
+                         const std::string& key = "", const std::string& value = "")
+{
+  for (int i = 0; parent && i < parent->GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement* element = parent->GetNestedElement(i);
+    if (name != element->GetName())
+      continue;
+    if (key.empty())
+      return element;
+    const char* attribute = element->GetAttribute(key.c_str());
+    if (attribute && value == attribute)
+      return element;
+  }
+  return nullptr;
+}
+
+int count(vtkXMLDataElement* parent, const std::string& name)
+{
+  int n = 0;
+  for (int i = 0; parent && i < parent->GetNumberOfNestedElements(); ++i)
+    n += name == parent->GetNestedElement(i)->GetName() ? 1 : 0;
+  return n;
+}
+
+std::vector<double> numbers(const char* text)
+{
+  std::vector<double> values;
+  std::stringstream in(text ? text : "");
+  std::string item;
+  while (std::getline(in, item, ','))
+    values.push_back(std::stod(item));
+  return values;
+}
+
+std::string text_of(vtkXMLDataElement* element)
+{
+  return element && element->GetCharacterData() ? element->GetCharacterData() : "";
+}
+
+} // namespace
+
+TEST(FebWriter, WritesWellFormedXmlWithTheModelsCounts)
+{
+  const FebProblem problem = bar_problem(bar_settings(0.029));
+  const auto root = parsed(feb_text(problem));
+  ASSERT_NE(root, nullptr);
+  EXPECT_STREQ(root->GetName(), "febio_spec");
+  EXPECT_STREQ(root->GetAttribute("version"), "4.0");
+  vtkXMLDataElement* mesh = child(root, "Mesh");
+  const KneeModel model = bar_knee();
+  EXPECT_EQ(count(child(mesh, "Nodes", "name", "ligament"), "node"), model.mesh.V.rows());
+  EXPECT_EQ(count(child(mesh, "Nodes", "name", "femur"), "node"), model.femur->GetNumberOfPoints());
+  EXPECT_EQ(count(child(mesh, "Elements", "name", "ligament"), "elem"), model.mesh.T.rows());
+  EXPECT_EQ(count(child(mesh, "Elements", "name", "tibia"), "elem"),
+            model.tibia->GetNumberOfCells());
+  EXPECT_EQ(count(child(child(root, "MeshData"), "ElementData", "name", "fiber"), "e"),
+            model.mesh.T.rows());
+  const std::string femur_set = text_of(child(mesh, "NodeSet", "name", "femur_attachment"));
+  EXPECT_EQ(numbers(femur_set.c_str()).size(), model.femur_nodes.size());
+  EXPECT_EQ(text_of(child(child(root, "Control"), "time_steps")), "3");
+  // The must points and the femur's six degrees of freedom; the tibia is fixed.
+  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
+  EXPECT_EQ(count(child(root, "Rigid"), "rigid_bc"), 7);
+  EXPECT_NE(child(child(root, "Rigid"), "rigid_bc", "type", "rigid_fixed"), nullptr);
+  EXPECT_EQ(child(root, "Contact"), nullptr);
+}
+
+TEST(FebWriter, NodesTetsAndFibersReadBackExactly)
+{
+  const FebProblem problem = bar_problem(bar_settings(0.029));
+  const auto root = parsed(feb_text(problem));
+  ASSERT_NE(root, nullptr);
+  vtkXMLDataElement* mesh = child(root, "Mesh");
+  vtkXMLDataElement* nodes = child(mesh, "Nodes", "name", "ligament");
+  ASSERT_EQ(nodes->GetNumberOfNestedElements(), problem.ligament.V.rows());
+  for (int n = 0; n < nodes->GetNumberOfNestedElements(); ++n) {
+    vtkXMLDataElement* node = nodes->GetNestedElement(n);
+    EXPECT_EQ(std::stoi(node->GetAttribute("id")), n + 1);
+    const std::vector<double> xyz = numbers(node->GetCharacterData());
+    ASSERT_EQ(xyz.size(), 3u);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(xyz[static_cast<std::size_t>(c)], problem.ligament.V(n, c)) << "node " << n;
+  }
+  vtkXMLDataElement* tets = child(mesh, "Elements", "name", "ligament");
+  for (int t = 0; t < tets->GetNumberOfNestedElements(); ++t) {
+    const std::vector<double> ids = numbers(tets->GetNestedElement(t)->GetCharacterData());
+    ASSERT_EQ(ids.size(), 4u);
+    for (int c = 0; c < 4; ++c)
+      EXPECT_EQ(ids[static_cast<std::size_t>(c)], problem.ligament.T(t, c) + 1);
+  }
+  vtkXMLDataElement* fibers = child(child(root, "MeshData"), "ElementData", "name", "fiber");
+  for (int e = 0; e < fibers->GetNumberOfNestedElements(); ++e) {
+    const std::vector<double> a = numbers(fibers->GetNestedElement(e)->GetCharacterData());
+    EXPECT_EQ(Eigen::Vector3d(a[0], a[1], a[2]), problem.fiber_directions.row(e).transpose());
+  }
+}
+
+TEST(FebWriter, RigidDegreesOfFreedomPlaceTheBodyAtThePose)
+{
+  // A turn about an axis through the center is a rotation vector and no displacement.
+  const Eigen::Vector3d center(2.0, -1.0, 5.0);
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 2.0, -0.5).normalized();
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.translate(center).rotate(Eigen::AngleAxisd(1.2, axis)).translate(-center);
+  const auto dofs = feb_rigid_dofs(turn, center);
+  EXPECT_LT(dofs.head<3>().norm(), 1e-12);
+  EXPECT_LT((dofs.tail<3>() - 1.2 * axis).norm(), 1e-12);
+  // Any pose: FEBio's placement x = c + d + R (X - c) is the pose.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.rotate(Eigen::AngleAxisd(2.5, Eigen::Vector3d(0.3, -1.0, 0.4).normalized()));
+  pose.pretranslate(Eigen::Vector3d(4.0, 7.0, -3.0));
+  const auto general = feb_rigid_dofs(pose, center);
+  const Eigen::Vector3d rotation_vector = general.tail<3>();
+  const Eigen::AngleAxisd rotation(rotation_vector.norm(), rotation_vector.normalized());
+  for (const Eigen::Vector3d& X : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, -3, 8)})
+    EXPECT_LT((center + general.head<3>() + rotation * (X - center) - pose * X).norm(), 1e-12);
+}
+
+TEST(FebWriter, FemurPosesTurnAboutTheFlexionAxis)
+{
+  const KneeModel model = bar_knee();
+  const std::vector<Eigen::Isometry3d> poses =
+      femur_poses(knee_conditions(model, bar_axis(), 60.0), angle_steps({0.0, 30.0, 60.0}));
+  ASSERT_EQ(poses.size(), 3u);
+  EXPECT_TRUE(poses[0].isApprox(Eigen::Isometry3d::Identity()));
+  const Eigen::AngleAxisd turn(poses[2].linear());
+  EXPECT_NEAR(turn.angle(), M_PI / 3.0, 1e-12);
+  EXPECT_LT((turn.axis() - Eigen::Vector3d::UnitX()).norm(), 1e-12);
+  EXPECT_LT((poses[1] * bar_axis().point_mm - bar_axis().point_mm).norm(), 1e-12);
+}
+
+TEST(FebWriter, MaterialFollowsTheSettings)
+{
+  FlexionSettings settings = bar_settings(0.0);
+  settings.material.volumetric = VolumetricLaw::lnj;
+  auto root = parsed(feb_text(bar_problem(settings)));
+  vtkXMLDataElement* ligament = child(child(root, "Material"), "material", "name", "ligament");
+  EXPECT_STREQ(ligament->GetAttribute("type"), "trans iso Mooney-Rivlin");
+  EXPECT_EQ(text_of(child(ligament, "pressure_model")), "default");
+  EXPECT_EQ(std::stod(text_of(child(ligament, "c1"))), 0.5 * settings.material.mu_mpa);
+  EXPECT_EQ(std::stod(text_of(child(ligament, "lam_max"))), settings.material.fiber->lambda_star);
+
+  settings = bar_settings(0.04);
+  root = parsed(feb_text(bar_problem(settings)));
+  ligament = child(child(root, "Material"), "material", "name", "ligament");
+  EXPECT_STREQ(ligament->GetAttribute("type"), "uncoupled solid mixture");
+  EXPECT_EQ(text_of(child(ligament, "pressure_model")), "Abaqus");
+  vtkXMLDataElement* prestrained = child(ligament, "solid", "type", "uncoupled prestrain elastic");
+  ASSERT_NE(prestrained, nullptr);
+  vtkXMLDataElement* stretch = child(prestrained, "prestrain", "type", "in-situ stretch");
+  EXPECT_EQ(std::stod(text_of(child(stretch, "stretch"))), 1.04);
+  EXPECT_EQ(text_of(child(stretch, "isochoric")), "1");
+  EXPECT_NE(child(prestrained, "elastic", "type", "uncoupled fiber-exp-linear"), nullptr);
+  // The ground substance is not pre-stretched.
+  EXPECT_NE(child(ligament, "solid", "type", "Mooney-Rivlin"), nullptr);
+}
+
+TEST(FebWriter, ContactKeepsTheMatrixSymmetricForSkyline)
+{
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  settings.contact.bones = {"femur"};
+  const FebProblem problem = bar_problem(settings);
+  const auto root = parsed(feb_text(problem));
+  vtkXMLDataElement* contact = child(root, "Contact");
+  ASSERT_NE(contact, nullptr);
+  EXPECT_EQ(count(contact, "contact"), 1); // the femur only
+  vtkXMLDataElement* femur = child(contact, "contact", "name", "ligament_on_femur");
+  EXPECT_STREQ(femur->GetAttribute("type"), "sliding-elastic");
+  EXPECT_EQ(text_of(child(femur, "symmetric_stiffness")), "1");
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "symmetric_stiffness")),
+            "symmetric");
+  // The free surface: boundary faces with a node not bound to a bone.
+  vtkXMLDataElement* surface =
+      child(child(root, "Mesh"), "Surface", "name", "ligament_free_surface");
+  ASSERT_NE(surface, nullptr);
+  const KneeModel model = bar_knee();
+  std::vector<bool> bound(static_cast<std::size_t>(model.mesh.V.rows()), false);
+  for (int n : model.femur_nodes)
+    bound[static_cast<std::size_t>(n)] = true;
+  for (int n : model.tibia_nodes)
+    bound[static_cast<std::size_t>(n)] = true;
+  // A 2 x 2 x 8 box: 4 x 8 x 2 quads per side, two triangles each; the end faces are all bound.
+  EXPECT_EQ(count(surface, "tri3"), 4 * 8 * 2 * 2);
+  for (int f = 0; f < surface->GetNumberOfNestedElements(); ++f) {
+    const std::vector<double> ids = numbers(surface->GetNestedElement(f)->GetCharacterData());
+    bool free = false;
+    for (double id : ids)
+      free = free || !bound[static_cast<std::size_t>(id) - 1];
+    EXPECT_TRUE(free) << "face " << f;
+  }
+}
+
+TEST(FebWriter, PaperConventionIsWrittenWithAWarning)
+{
+  FlexionSettings settings = bar_settings(0.029);
+  settings.material.fiber->convention = FiberConvention::paper;
+  std::vector<std::string> warnings;
+  const FebProblem problem = bar_problem(settings, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("weiss"), std::string::npos);
+  EXPECT_NE(feb_text(problem).find("<!-- WARNING: the model's fiber convention is 'paper'"),
+            std::string::npos);
+}
+
+TEST(FebWriter, RefusesProblemsItCannotWrite)
+{
+  const FebProblem good = bar_problem(bar_settings(0.029));
+  FebProblem problem = good;
+  problem.fiber_directions.conservativeResize(3, 3);
+  EXPECT_THROW(feb_text(problem), InputError);
+  problem = good;
+  problem.bones[feb_tibia].attached_nodes.push_back(problem.bones[feb_femur].attached_nodes[0]);
+  EXPECT_THROW(feb_text(problem), InputError);
+  problem = good;
+  problem.bones[feb_femur].poses.pop_back();
+  EXPECT_THROW(feb_text(problem), InputError);
+  problem = good;
+  problem.step_labels.clear();
+  EXPECT_THROW(feb_text(problem), InputError);
+  problem = good;
+  problem.material.fiber.reset();
+  EXPECT_THROW(feb_text(problem), InputError);
+}

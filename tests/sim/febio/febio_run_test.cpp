@@ -1,0 +1,140 @@
+/// FEBio on the bar knee (skipped, saying so, where FEBio is not given: configure with
+/// -DLIGSIM_FEBIO=/path/to/febio4 or set the environment variable LIGSIM_FEBIO): the two solvers
+/// agree, FEBio's femur is where it was prescribed, FEBio's own energy is ours, every material
+/// option runs to normal termination, and FEBio's failures reach the user as errors.
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "sim/febio/feb_writer.hpp"
+#include "sim/febio/febio_cross_check.hpp"
+#include "tests/sim/febio/bar_knee.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+using namespace ligsim;
+using namespace ligsim::sim;
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// FEBio's executable: $LIGSIM_FEBIO, else the CMake setting; empty when neither is given.
+std::string febio()
+{
+  const char* variable = std::getenv("LIGSIM_FEBIO");
+  if (variable && *variable)
+    return variable;
+  return LIGSIM_FEBIO_EXECUTABLE;
+}
+
+#define REQUIRE_FEBIO()                                                                            \
+  if (febio().empty())                                                                             \
+  GTEST_SKIP() << "FEBio not given: configure with -DLIGSIM_FEBIO=/path/to/febio4 or set "         \
+                  "LIGSIM_FEBIO to run the FEBio cross-checks"
+
+fs::path fresh_folder(const std::string& name)
+{
+  const fs::path dir =
+      fs::temp_directory_path() / ("ligsim_febio_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  ensure_directory(dir);
+  return dir;
+}
+
+CrossCheck cross_check(FlexionSettings settings, const std::string& name)
+{
+  Progress::set_quiet(true);
+  const fs::path out = fresh_folder(name);
+  settings.model_dir = out; // the bones' contact grids are cached there
+  const KneeModel model = bar_knee();
+  return cross_check_with_febio(model, settings, resolve_knee_motion(model, settings), febio(),
+                                out);
+}
+
+} // namespace
+
+TEST(FebioRun, BarFlexionAgreesWithOurs)
+{
+  REQUIRE_FEBIO();
+  const CrossCheck check = cross_check(bar_settings(0.029), "agree");
+  ASSERT_EQ(check.rows.size(), 3u);
+  for (std::size_t k = 0; k < check.rows.size(); ++k) {
+    const ComparisonRow& r = check.rows[k];
+    EXPECT_GT(r.febio_femur_force_n, 1.0);
+    EXPECT_NEAR(r.ours_femur_force_n, r.febio_femur_force_n, 1e-6 * r.febio_femur_force_n);
+    EXPECT_NEAR(r.ours_energy_mj, r.febio_energy_mj, 1e-6 * r.febio_energy_mj);
+    EXPECT_NEAR(r.ours_mean_fiber_stretch, r.febio_mean_fiber_stretch, 1e-8);
+    // The vectors too, not only their lengths.
+    EXPECT_LT((check.ours[k].femur_force_n - check.febio[k].femur_force_n).norm(),
+              1e-6 * r.febio_femur_force_n);
+    EXPECT_LT(check.febio[k].femur_pose_error_mm, 1e-8) << "FEBio's femur is not at the pose";
+  }
+  // The sweep flexes the bar: the energy grows with the angle.
+  EXPECT_GT(check.rows[2].febio_energy_mj, 2.0 * check.rows[0].febio_energy_mj);
+  EXPECT_TRUE(fs::exists(check.run.log));
+  EXPECT_TRUE(fs::exists(check.feb));
+}
+
+TEST(FebioRun, FebiosOwnEnergyIsOursWithoutInSituStrain)
+{
+  REQUIRE_FEBIO();
+  FlexionSettings settings = bar_settings(0.0);
+  settings.material.volumetric = VolumetricLaw::lnj;
+  const CrossCheck check = cross_check(settings, "own_energy");
+  // Without pre-stretch the bar holds no energy at 0 degrees.
+  EXPECT_GT(check.febio.back().strain_energy_mj, 1.0);
+  for (const FebioStep& step : check.febio)
+    EXPECT_NEAR(step.logged_energy_mj, step.strain_energy_mj, 1e-12 + 1e-8 * step.strain_energy_mj);
+}
+
+TEST(FebioRun, EveryMaterialOptionAndContactRunsToNormalTermination)
+{
+  REQUIRE_FEBIO();
+  Progress::set_quiet(true);
+  const KneeModel model = bar_knee();
+  int run = 0;
+  for (FiberConvention convention : {FiberConvention::paper, FiberConvention::weiss})
+    for (VolumetricLaw law : {VolumetricLaw::jm1, VolumetricLaw::lnj})
+      for (double strain : {0.0, 0.029}) {
+        FlexionSettings settings = bar_settings(strain);
+        settings.material.fiber->convention = convention;
+        settings.material.volumetric = law;
+        settings.contact.enabled = (run++ % 2) == 0;
+        std::vector<std::string> warnings;
+        const FebProblem problem =
+            knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
+                             angle_steps(settings.angles_deg), bar_axis().point_mm, warnings);
+        const fs::path feb = fresh_folder("options") / ("case" + std::to_string(run) + ".feb");
+        write_feb(feb, problem);
+        const FebioRun result = run_febio(febio(), feb); // throws unless normal termination
+        EXPECT_TRUE(result.parsed.normal_termination) << feb;
+        EXPECT_NE(result.parsed.find(static_cast<int>(FebLogRecord::ligament_nodes), 3.0), nullptr);
+      }
+}
+
+TEST(FebioRun, FebiosFailureIsAnErrorWithItsMessage)
+{
+  REQUIRE_FEBIO();
+  const fs::path feb = fresh_folder("broken") / "broken.feb";
+  write_text_atomically(feb, "<?xml version=\"1.0\"?>\n<febio_spec version=\"4.0\">\n"
+                             "  <Material><material id=\"1\" type=\"no such material\"/>"
+                             "</Material>\n</febio_spec>\n");
+  try {
+    run_febio(febio(), feb);
+    FAIL() << "a broken file passed";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("FEBio could not read"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FebioRun, RefusesAnExecutableThatIsNotThere)
+{
+  const fs::path feb = fresh_folder("missing") / "knee.feb";
+  EXPECT_THROW(run_febio("/nonexistent/febio4", feb), InputError);
+}
