@@ -66,6 +66,9 @@ public:
   /// Structural figures: matrix non-zeros (direct) or stored element matrices (pcg).
   std::size_t stored_values() const;
 
+  /// The direct solver (null for pcg), for sharing its matrix and factor.
+  DirectCholesky* direct() { return m_direct.get(); }
+
 private:
   const HyperelasticBody& m_body;
   const DofPartition& m_dofs;
