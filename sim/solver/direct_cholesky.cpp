@@ -9,8 +9,6 @@ namespace ligsim::sim {
 
 namespace {
 
-/// Elements whose stiffness is computed (in parallel) before being scattered (serially).
-constexpr Eigen::Index chunk_size = 4096;
 /// Relative residual of lagged-factor CG solves.
 constexpr double lagged_tolerance = 1e-8;
 /// CG iterations that measure the convergence rate of a lagged solve.
@@ -23,23 +21,16 @@ constexpr int max_iteration_budget = 40;
 
 DirectCholesky::DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs)
     : m_stiffness(body.mesh().T, dofs)
-    , m_chunk(static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, body.element_count())))
 {
 }
 
 int DirectCholesky::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project,
                             double scale, const Eigen::VectorXd& mass,
-                            const std::vector<NodeBlock>& blocks)
+                            const std::vector<NodeBlock>& blocks, BodyEnergy* energy,
+                            Eigen::VectorXd* gradient)
 {
   m_stiffness.set_zero();
-  int projected = 0;
-  const Eigen::Index count = body.element_count();
-  for (Eigen::Index begin = 0; begin < count; begin += chunk_size) {
-    const Eigen::Index end = std::min(count, begin + chunk_size);
-    projected += body.element_hessians(x, begin, end, project, m_chunk.data());
-    for (Eigen::Index e = begin; e < end; ++e)
-      m_stiffness.add_element(e, m_chunk[static_cast<std::size_t>(e - begin)], scale);
-  }
+  const int projected = m_stiffness.add_elements(body, x, project, scale, energy, gradient);
   for (const NodeBlock& block : blocks)
     m_stiffness.add_node_block(block.node, block.block, scale);
   if (mass.size() > 0)

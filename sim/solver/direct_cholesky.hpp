@@ -22,8 +22,11 @@ public:
   DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs);
 
   /// Assembles A = diag(mass) + scale (K(x) + node blocks); returns the projected element count.
+  /// `energy` and `gradient` (either may be null) receive the body's energy and gradient from
+  /// the same pass (see StiffnessMatrix::add_elements).
   int prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project, double scale,
-              const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks);
+              const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks,
+              BodyEnergy* energy = nullptr, Eigen::VectorXd* gradient = nullptr);
 
   /// Solves A y = b: exactly with a fresh factor, else by CG preconditioned with the lagged one,
   /// refactorising when CG is slow. Reports an indefinite A (negative pivots, a zero pivot, or
@@ -49,7 +52,6 @@ private:
 
   StiffnessMatrix m_stiffness;
   SupernodalLdlt m_ldlt;
-  std::vector<Matrix12d> m_chunk;
   /// CG iterations that cost about one factorisation: the budget of the lagged factor.
   int m_iteration_budget = 0;
   int m_lagged_iterations = 0; ///< spent since the last factorisation

@@ -34,10 +34,7 @@ struct Problem {
   void assemble()
   {
     stiffness.set_zero();
-    std::vector<Matrix12d> chunk(static_cast<std::size_t>(body.element_count()));
-    body.element_hessians(body.rest_positions(), 0, body.element_count(), false, chunk.data());
-    for (Eigen::Index e = 0; e < body.element_count(); ++e)
-      stiffness.add_element(e, chunk[static_cast<std::size_t>(e)]);
+    stiffness.add_elements(body, body.rest_positions(), false);
   }
 
   HyperelasticBody body;
