@@ -12,8 +12,6 @@ namespace ligsim::sim {
 
 namespace {
 
-constexpr Eigen::Index chunk_size = 4096;
-
 /// The tangent factorised as L D L^T without pivoting (indefinite matrices factorise unless a
 /// pivot is zero); D's negative entries count the negative eigenvalues (Sylvester).
 class Tangent {
@@ -156,14 +154,7 @@ void BodyEquilibrium::tangent(const Eigen::VectorXd& u, Eigen::SparseMatrix<doub
 {
   const Eigen::VectorXd x = positions(u);
   m_stiffness.set_zero();
-  std::vector<Matrix12d> chunk(
-      static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, m_body.element_count())));
-  for (Eigen::Index begin = 0; begin < m_body.element_count(); begin += chunk_size) {
-    const Eigen::Index end = std::min<Eigen::Index>(m_body.element_count(), begin + chunk_size);
-    m_body.element_hessians(x, begin, end, false, chunk.data());
-    for (Eigen::Index e = begin; e < end; ++e)
-      m_stiffness.add_element(e, chunk[static_cast<std::size_t>(e - begin)]);
-  }
+  m_stiffness.add_elements(m_body, x, false);
   K = m_stiffness.matrix();
 }
 

@@ -3,87 +3,101 @@
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ligsim::sim {
 
 namespace {
 
-/// Elements whose stiffness is computed (in parallel) before being scattered (serially).
-constexpr Eigen::Index chunk_size = 4096;
-/// Lagged-factor CG: give up (and refactorise) beyond this many iterations; refactorise before
-/// the next solve when one needed more than `slow_iterations`.
-constexpr int lagged_iteration_limit = 40;
-constexpr int slow_iterations = 20;
 /// Relative residual of lagged-factor CG solves.
 constexpr double lagged_tolerance = 1e-8;
+/// CG iterations that measure the convergence rate of a lagged solve.
+constexpr int rate_iterations = 5;
+/// Bounds of the lagged factor's CG budget per factorisation.
+constexpr int min_iteration_budget = 4;
+constexpr int max_iteration_budget = 40;
 
 } // namespace
 
 DirectCholesky::DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs)
     : m_stiffness(body.mesh().T, dofs)
-    , m_chunk(static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, body.element_count())))
 {
-  m_cholesky.cholmod().print = 0; // indefinite matrices are reported through info()
-  // Nested dissection (METIS) gives less fill than AMD on 3-D meshes.
-  m_cholesky.cholmod().nmethods = 1;
-  m_cholesky.cholmod().method[0].ordering = CHOLMOD_METIS;
 }
 
 int DirectCholesky::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project,
                             double scale, const Eigen::VectorXd& mass,
-                            const std::vector<NodeBlock>& blocks)
+                            const std::vector<NodeBlock>& blocks, BodyEnergy* energy,
+                            Eigen::VectorXd* gradient)
 {
   m_stiffness.set_zero();
-  int projected = 0;
-  const Eigen::Index count = body.element_count();
-  for (Eigen::Index begin = 0; begin < count; begin += chunk_size) {
-    const Eigen::Index end = std::min(count, begin + chunk_size);
-    projected += body.element_hessians(x, begin, end, project, m_chunk.data());
-    for (Eigen::Index e = begin; e < end; ++e)
-      m_stiffness.add_element(e, m_chunk[static_cast<std::size_t>(e - begin)], scale);
-  }
+  const int projected = m_stiffness.add_elements(body, x, project, scale, energy, gradient);
   for (const NodeBlock& block : blocks)
     m_stiffness.add_node_block(block.node, block.block, scale);
   if (mass.size() > 0)
     m_stiffness.add_diagonal(mass);
   m_factor_fresh = false;
+  m_plain_tangent = !project && scale == 1.0 && mass.size() == 0 && blocks.empty();
+  if (m_plain_tangent)
+    m_tangent_x = x;
   return projected;
 }
 
 bool DirectCholesky::factorize()
 {
-  if (!m_analyzed) {
-    m_cholesky.analyzePattern(m_stiffness.matrix());
-    m_analyzed = true;
+  if (!m_ldlt.analyzed()) {
+    m_ldlt.analyze(m_stiffness.matrix());
+    // A CG iteration reads the factor (forward and back substitution) and the matrix.
+    const double iteration_cost =
+        static_cast<double>(m_ldlt.factor_entries()) + static_cast<double>(m_stiffness.nonzeros());
+    m_iteration_budget =
+        std::clamp(static_cast<int>(std::lround(m_ldlt.factorization_cost() / iteration_cost)),
+                   min_iteration_budget, max_iteration_budget);
   }
-  m_cholesky.factorize(m_stiffness.matrix());
+  const bool ok = m_ldlt.factorize(m_stiffness.matrix());
   ++m_factorizations;
-  m_has_factor = m_cholesky.info() == Eigen::Success;
-  m_factor_fresh = m_has_factor;
+  m_factor_fresh = ok;
+  m_has_factor = ok && m_ldlt.negative_pivots() == 0;
   m_refactor_next = false;
-  return m_has_factor;
+  m_lagged_iterations = 0;
+  return ok;
 }
 
-bool DirectCholesky::lagged_cg(const Eigen::VectorXd& b, Eigen::VectorXd& y, int limit,
+bool DirectCholesky::holds_tangent(const Eigen::VectorXd& x) const
+{
+  return m_factor_fresh && m_plain_tangent && x.size() == m_tangent_x.size() && x == m_tangent_x;
+}
+
+bool DirectCholesky::lagged_cg(const Eigen::VectorXd& b, Eigen::VectorXd& y,
                                LinearSolveReport& report)
 {
   const double b_norm = b.norm();
-  y = m_cholesky.solve(b);
+  y = m_ldlt.solve(b);
   Eigen::VectorXd Ay;
   m_stiffness.multiply(y, Ay);
   Eigen::VectorXd r = b - Ay;
-  Eigen::VectorXd z = m_cholesky.solve(r);
+  Eigen::VectorXd z = m_ldlt.solve(r);
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
   Eigen::VectorXd Ap;
-  for (int k = 1;; ++k) {
+  double first_residual = 0.0;
+  int k = 0;
+  for (;; ++k) {
     report.relative_residual = r.norm() / b_norm;
     if (report.relative_residual <= lagged_tolerance) {
       report.iterations += k;
-      m_refactor_next = k > slow_iterations;
       return true;
     }
-    if (k > limit)
+    if (k == 0)
+      first_residual = report.relative_residual;
+    // Give up (and factorise) once the iterations still to go, at the rate so far, would cost
+    // more than a factorisation.
+    if (k >= rate_iterations) {
+      const double rate = std::pow(report.relative_residual / first_residual, 1.0 / k);
+      if (!(rate < 1.0) || std::log(lagged_tolerance / report.relative_residual) / std::log(rate) >
+                               m_iteration_budget)
+        break;
+    }
+    if (k >= 2 * m_iteration_budget)
       break;
     m_stiffness.multiply(p, Ap);
     const double curvature = p.dot(Ap);
@@ -92,12 +106,12 @@ bool DirectCholesky::lagged_cg(const Eigen::VectorXd& b, Eigen::VectorXd& y, int
     const double alpha = rz / curvature;
     y += alpha * p;
     r -= alpha * Ap;
-    z = m_cholesky.solve(r);
+    z = m_ldlt.solve(r);
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;
   }
-  report.iterations += limit;
+  report.iterations += k;
   return false;
 }
 
@@ -108,16 +122,21 @@ LinearSolveReport DirectCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorX
     y = Eigen::VectorXd::Zero(b.size());
     return report;
   }
-  if (m_has_factor && !m_factor_fresh && !m_refactor_next &&
-      lagged_cg(b, y, lagged_iteration_limit, report))
-    return report;
+  if (m_has_factor && !m_factor_fresh && !m_refactor_next) {
+    if (lagged_cg(b, y, report)) {
+      // Refactorise once the iterations spent on this factor would have paid for a new one.
+      m_lagged_iterations += report.iterations;
+      m_refactor_next = m_lagged_iterations > m_iteration_budget;
+      return report;
+    }
+  }
   ++report.factorizations;
-  if (!factorize()) {
+  if (!factorize() || m_ldlt.negative_pivots() > 0) {
     report.ok = false;
     report.indefinite = true;
     return report;
   }
-  y = m_cholesky.solve(b);
+  y = m_ldlt.solve(b);
   report.ok = y.allFinite();
   return report;
 }

@@ -114,6 +114,13 @@ BodyEnergy HyperelasticBody::finish_energy(const Eigen::VectorXd& x,
   return result;
 }
 
+bool HyperelasticBody::element_hessian(const Eigen::VectorXd& x, Eigen::Index e, bool project,
+                                       ElementEvaluation& out) const
+{
+  m_material.evaluate(tet_corners(m_mesh.T, e, x), shape(e), fiber(e), ElementNeeds::hessian, out);
+  return project && !out.inverted && project_to_psd(out.hessian);
+}
+
 int HyperelasticBody::element_hessians(const Eigen::VectorXd& x, Eigen::Index begin,
                                        Eigen::Index end, bool project, Matrix12d* out) const
 {
@@ -121,13 +128,9 @@ int HyperelasticBody::element_hessians(const Eigen::VectorXd& x, Eigen::Index be
   parallel_slices(end - begin, [&](std::ptrdiff_t first, std::ptrdiff_t last, int worker) {
     ElementEvaluation evaluation;
     for (std::ptrdiff_t k = first; k < last; ++k) {
-      const Eigen::Index e = begin + k;
-      m_material.evaluate(tet_corners(m_mesh.T, e, x), shape(e), fiber(e), ElementNeeds::hessian,
-                          evaluation);
-      Matrix12d& H = out[k];
-      H = evaluation.hessian;
-      if (project && project_to_psd(H))
+      if (element_hessian(x, begin + k, project, evaluation))
         ++projected[static_cast<std::size_t>(worker)];
+      out[k] = evaluation.hessian;
     }
   });
   int total = 0;

@@ -5,9 +5,12 @@
 #include "common/mesh.hpp"
 #include "sim/material/weiss_material.hpp"
 #include "sim/mesh/tet_shape.hpp"
+#include "sim/solver/parallel.hpp"
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace ligsim::sim {
@@ -49,6 +52,19 @@ public:
   /// Energy and its gradient dE/dx (flat, N); the gradient is meaningless when inverted.
   BodyEnergy energy_gradient(const Eigen::VectorXd& x, Eigen::VectorXd& gradient) const;
 
+  /// Energy, gradient and stiffness of element e into `out` (the stiffness projected to positive
+  /// semi-definite when `project`); returns whether it needed the projection. `out.inverted`
+  /// says whether the element is inverted (then nothing else is computed).
+  bool element_hessian(const Eigen::VectorXd& x, Eigen::Index e, bool project,
+                       ElementEvaluation& out) const;
+  /// One parallel pass computing every element's stiffness (projected to positive
+  /// semi-definite when `project`; `projected` counts those that needed it) and handing it to
+  /// visit(e, H, worker) on its worker (contiguous slices of the elements, in order; workers
+  /// 0 .. worker_count() - 1), with the energy and, when `gradient` is given, the gradient
+  /// exactly as energy_gradient() gives them. Inverted elements are not visited.
+  template <class Visit>
+  BodyEnergy stiffness_pass(const Eigen::VectorXd& x, bool project, Eigen::VectorXd* gradient,
+                            int& projected, Visit&& visit) const;
   /// Stiffness of elements [begin, end) into out[0 .. end - begin), each projected to positive
   /// semi-definite when `project`; returns how many needed the projection. `x` must have no
   /// inverted element.
@@ -74,5 +90,45 @@ private:
   double m_rest_volume = 0.0;
   Eigen::Vector3d m_no_fiber = Eigen::Vector3d::Zero();
 };
+
+template <class Visit>
+BodyEnergy HyperelasticBody::stiffness_pass(const Eigen::VectorXd& x, bool project,
+                                            Eigen::VectorXd* gradient, int& projected,
+                                            Visit&& visit) const
+{
+  const std::size_t workers = static_cast<std::size_t>(worker_count());
+  std::vector<double> sums(workers, 0.0);
+  std::vector<int> inverted(workers, std::numeric_limits<int>::max());
+  std::vector<int> projections(workers, 0);
+  std::vector<Eigen::VectorXd> partial(gradient ? workers : 0);
+  parallel_slices(m_mesh.T.rows(), [&](std::ptrdiff_t begin, std::ptrdiff_t end, int worker) {
+    const std::size_t w = static_cast<std::size_t>(worker);
+    if (gradient)
+      partial[w].setZero(dof_count());
+    ElementEvaluation evaluation;
+    for (std::ptrdiff_t e = begin; e < end; ++e) {
+      projections[w] += element_hessian(x, e, project, evaluation) ? 1 : 0;
+      if (evaluation.inverted) {
+        inverted[w] = std::min(inverted[w], static_cast<int>(e));
+        continue;
+      }
+      sums[w] += evaluation.energy;
+      if (gradient)
+        for (int i = 0; i < 4; ++i)
+          partial[w].segment<3>(3 * m_mesh.T(e, i)) += evaluation.gradient.segment<3>(3 * i);
+      visit(e, evaluation.hessian, worker);
+    }
+  });
+  if (gradient) {
+    gradient->setZero(dof_count());
+    for (const Eigen::VectorXd& local : partial)
+      if (local.size() == gradient->size())
+        *gradient += local;
+  }
+  projected = 0;
+  for (int count : projections)
+    projected += count;
+  return finish_energy(x, sums, inverted);
+}
 
 } // namespace ligsim::sim

@@ -66,21 +66,29 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
   if (m_extra)
     m_extra->make_admissible(x, t);
+  std::vector<NodeBlock> blocks;
+  if (m_extra)
+    m_extra->hessian_blocks(x, t, blocks);
+
+  // (M (1 + h alpha) + (h^2 + h beta) K) dv = h f - h (h + beta) K v - h alpha M v
+  //                                         = h f - (A v - M v).
+  // The matrix's pass over the elements gives the body's energy and gradient too.
+  const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
+  const double stiffness_scale = h * h + h * beta;
+  bool project = m_settings.projection == PsdProjection::always;
+  BodyEnergy energy;
   Eigen::VectorXd gradient;
-  const BodyEnergy energy = m_body.energy_gradient(x, gradient);
+  report.projected_elements +=
+      m_linear.prepare(x, project, stiffness_scale, mass_term, blocks, &energy, &gradient);
   if (!std::isfinite(energy.energy)) {
     m_failure = fmt::format("moving the prescribed nodes inverts element {} (J = {:.3g})",
                             energy.first_inverted, energy.inverted_j);
     return false;
   }
   gradient -= t * m_external;
-  std::vector<NodeBlock> blocks;
-  if (m_extra) {
-    if (!std::isfinite(m_extra->energy(x, t, &gradient))) {
-      m_failure = "a node lies inside a contact obstacle and could not be moved out";
-      return false;
-    }
-    m_extra->hessian_blocks(x, t, blocks);
+  if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient))) {
+    m_failure = "a node lies inside a contact obstacle and could not be moved out";
+    return false;
   }
 
   Eigen::VectorXd force(m_dofs.free_count());
@@ -89,13 +97,10 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     force(static_cast<Eigen::Index>(f)) = -gradient(free_dofs[f]);
     velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
   }
-  // (M (1 + h alpha) + (h^2 + h beta) K) dv = h f - h (h + beta) K v - h alpha M v
-  //                                         = h f - (A v - M v).
-  const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
-  bool project = m_settings.projection == PsdProjection::always;
   Eigen::VectorXd dv;
-  for (;;) {
-    report.projected_elements += m_linear.prepare(x, project, h * h + h * beta, mass_term, blocks);
+  for (bool prepared = true;; prepared = false) {
+    if (!prepared)
+      report.projected_elements += m_linear.prepare(x, project, stiffness_scale, mass_term, blocks);
     Eigen::VectorXd Av;
     m_linear.multiply(velocity, Av);
     const Eigen::VectorXd rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
@@ -129,7 +134,8 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   }
   for (int dof : free_dofs)
     x(dof) += h * v(dof);
-  const BodyEnergy after = m_body.energy(x);
+  const BodyEnergy after = m_body.energy_gradient(x, m_end_gradient);
+  m_end_energy = after.energy;
   if (!std::isfinite(after.energy)) {
     m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
                             after.inverted_j);
@@ -187,8 +193,8 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
       return result;
     }
 
-    Eigen::VectorXd gradient;
-    report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;
+    report.strain_energy_mj = m_end_energy;
+    Eigen::VectorXd gradient = m_end_gradient;
     gradient -= report.load_factor * m_external;
     if (m_extra)
       m_extra->energy(x, report.load_factor, &gradient);

@@ -95,6 +95,9 @@ private:
   Eigen::VectorXd m_mass;      ///< per DOF
   Eigen::VectorXd m_free_mass; ///< per free DOF
   StiffnessSolver m_linear;
+  /// The body's energy (N mm) and gradient (flat, N) at the end of the last step.
+  double m_end_energy = 0.0;
+  Eigen::VectorXd m_end_gradient;
   double m_force_floor = 0.0;
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;

@@ -4,6 +4,8 @@
 #include "sim/solver/direct_cholesky.hpp"
 #include "sim/solver/filtered_pcg.hpp"
 
+#include <cmath>
+
 namespace ligsim::sim {
 
 LinearSolverKind parse_linear_solver(const std::string& text, const std::string& where)
@@ -35,10 +37,17 @@ StiffnessSolver::StiffnessSolver(const HyperelasticBody& body, const DofPartitio
 StiffnessSolver::~StiffnessSolver() = default;
 
 int StiffnessSolver::prepare(const Eigen::VectorXd& x, bool project, double stiffness_scale,
-                             const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks)
+                             const Eigen::VectorXd& mass, const std::vector<NodeBlock>& blocks,
+                             BodyEnergy* energy, Eigen::VectorXd* gradient)
 {
   if (m_direct)
-    return m_direct->prepare(m_body, x, project, stiffness_scale, mass, blocks);
+    return m_direct->prepare(m_body, x, project, stiffness_scale, mass, blocks, energy, gradient);
+  if (energy) {
+    Eigen::VectorXd own;
+    *energy = m_body.energy_gradient(x, gradient ? *gradient : own);
+    if (!std::isfinite(energy->energy))
+      return 0;
+  }
   Eigen::VectorXd mass_full;
   if (mass.size() > 0) {
     mass_full = Eigen::VectorXd::Zero(m_dofs.dof_count());

@@ -52,10 +52,14 @@ public:
   /// Builds A = diag(mass) + stiffness_scale (K(x) + node blocks) (mass: one entry per free DOF,
   /// or empty for none; node blocks: an extra potential's Hessian), each element's K projected
   /// to positive semi-definite when `project`. Returns how many elements needed that
-  /// projection. `x` must have no inverted element.
+  /// projection. `x` must have no inverted element, unless `energy` is given: then it receives
+  /// the body's energy (and `gradient`, when given, its gradient) as
+  /// HyperelasticBody::energy_gradient() gives them, from the same pass where the solver allows,
+  /// and an inverted element leaves A undefined.
   int prepare(const Eigen::VectorXd& x, bool project, double stiffness_scale = 1.0,
               const Eigen::VectorXd& mass = Eigen::VectorXd(),
-              const std::vector<NodeBlock>& blocks = {});
+              const std::vector<NodeBlock>& blocks = {}, BodyEnergy* energy = nullptr,
+              Eigen::VectorXd* gradient = nullptr);
 
   /// Solves A y = b (free-DOF vectors). `y` holds the initial guess for CG.
   LinearSolveReport solve(const Eigen::VectorXd& b, Eigen::VectorXd& y);
@@ -65,6 +69,9 @@ public:
 
   /// Structural figures: matrix non-zeros (direct) or stored element matrices (pcg).
   std::size_t stored_values() const;
+
+  /// The direct solver (null for pcg), for sharing its matrix and factor.
+  DirectCholesky* direct() { return m_direct.get(); }
 
 private:
   const HyperelasticBody& m_body;

@@ -58,7 +58,7 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
     , m_rest(body.rest_positions())
     , m_external(m_dofs.external_forces(conditions))
     , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
-    , m_tangent(body, m_dofs)
+    , m_tangent(body, m_dofs, m_linear.direct())
     , m_convergence(
           settings.residual_tolerance, settings.energy_tolerance,
           (body.mesh().V.colwise().maxCoeff() - body.mesh().V.colwise().minCoeff()).norm())
@@ -173,9 +173,11 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
       // The unprojected Newton step converges quadratically to a saddle equilibrium (a state
       // past a bifurcation), where the projected one crawls or walks away from it.
       // The factorised tangent is the body's alone: no saddle step with an extra potential.
-      if (allow_saddle && !m_extra && m_tangent.factorize(x)) {
+      const int factorizations_before = m_tangent.factorizations();
+      const bool factorized = allow_saddle && !m_extra && m_tangent.factorize(x);
+      report.factorizations += m_tangent.factorizations() - factorizations_before;
+      if (factorized) {
         direction = m_tangent.solve(rhs);
-        ++report.factorizations;
         if (direction.allFinite()) {
           saddle = true;
           return true;
@@ -388,8 +390,27 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
         return false;
       moved = line_search(x, current, direction, false, t1, report, x_trial, trial, alpha);
     }
-    if (!moved)
-      return false;
+    const double round_off =
+        energy_round_off *
+        (std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit);
+    IterationFigures figures;
+    figures.displacement_step_mm = direction.lpNorm<Eigen::Infinity>();
+    figures.energy_round_off = round_off;
+    if (!moved) {
+      // At the round-off floor the energy cannot tell a better state from a worse one: when the
+      // whole step would change it by less than round-off and no trial lowered the residual,
+      // the iteration stagnates where it is (and the convergence test sees the floor).
+      if (saddle || report.relative_residual > NewtonConvergence::max_floor ||
+          std::abs(residual.dot(direction)) > round_off)
+        return false;
+      if (m_settings.verbose)
+        log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, no step "
+                             "changes the energy beyond round-off (stagnating)",
+                             t1, iterations, report.relative_residual));
+      figures.relative_residual = report.relative_residual;
+      m_convergence.record(figures);
+      continue;
+    }
     report.saddle_iterations += saddle ? 1 : 0;
     if (m_settings.verbose)
       log_info(fmt::format("load {:.4g} iteration {}: relative residual {:.3e}, step {:.3g}{} "
@@ -397,12 +418,7 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
                            t1, iterations, report.relative_residual, alpha,
                            saddle ? " (indefinite Newton)" : "", report.projected_elements,
                            report.factorizations, report.linear_iterations));
-    IterationFigures figures;
     figures.energy_change = std::abs(alpha * residual.dot(direction));
-    figures.energy_round_off =
-        energy_round_off *
-        (std::abs(current.body.energy) + std::abs(t1 * m_external.dot(x - m_rest)) + m_energy_unit);
-    figures.displacement_step_mm = direction.lpNorm<Eigen::Infinity>();
     x.swap(x_trial);
     std::swap(current, trial);
     figures.relative_residual = relative_residual(current.gradient, t1);
@@ -490,13 +506,12 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     }
     report.converged = true;
     report.load_factor = t_end;
-    if (report.indefinite_iterations > 0) {
+    if (report.indefinite_iterations > 0 && m_tangent.factorize(x)) {
       // Equilibrium reached through an indefinite stiffness: stable or not?
-      if (const std::optional<StabilityMode> mode = stability_mode(x)) {
-        report.negative_eigenvalues = mode->negative_eigenvalues;
-        if (mode->negative_eigenvalues > 0)
-          report.instability = "unstable equilibrium, past a " + mode->describe();
-      }
+      report.negative_eigenvalues = m_tangent.negative_eigenvalues();
+      if (report.negative_eigenvalues > 0)
+        report.instability = "unstable equilibrium, past a " +
+                             m_tangent.lowest_mode(free_part(m_external)).describe();
     }
     Eigen::VectorXd gradient;
     report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;

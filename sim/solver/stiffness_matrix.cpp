@@ -1,5 +1,7 @@
 #include "sim/solver/stiffness_matrix.hpp"
 
+#include "sim/solver/parallel.hpp"
+
 #include <algorithm>
 
 namespace ligsim::sim {
@@ -55,8 +57,8 @@ StiffnessMatrix::StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs)
   m_scatter.assign(static_cast<std::size_t>(T.rows()) * pair_count, -1);
   for (Eigen::Index e = 0; e < T.rows(); ++e) {
     int k = 0;
-    for (int p = 0; p < 12; ++p)
-      for (int q = p; q < 12; ++q, ++k) {
+    for (int q = 0; q < 12; ++q)
+      for (int p = 0; p <= q; ++p, ++k) {
         const int fp = dofs.free_index(3 * T(e, p / 3) + p % 3);
         const int fq = dofs.free_index(3 * T(e, q / 3) + q % 3);
         if (fp >= 0 && fq >= 0)
@@ -71,15 +73,51 @@ void StiffnessMatrix::set_zero()
   std::fill(m_matrix.valuePtr(), m_matrix.valuePtr() + m_matrix.nonZeros(), 0.0);
 }
 
-void StiffnessMatrix::add_element(Eigen::Index e, const Matrix12d& H, double scale)
+void StiffnessMatrix::scatter(Eigen::Index e, const Matrix12d& H, double scale,
+                              double* values) const
 {
-  const int* scatter = m_scatter.data() + static_cast<std::size_t>(e) * pair_count;
-  double* values = m_matrix.valuePtr();
+  const int* positions = m_scatter.data() + static_cast<std::size_t>(e) * pair_count;
   int k = 0;
-  for (int p = 0; p < 12; ++p)
-    for (int q = p; q < 12; ++q, ++k)
-      if (scatter[k] >= 0)
-        values[scatter[k]] += scale * H(p, q);
+  for (int q = 0; q < 12; ++q)
+    for (int p = 0; p <= q; ++p, ++k)
+      if (positions[k] >= 0)
+        values[positions[k]] += scale * H(p, q);
+}
+
+int StiffnessMatrix::add_elements(const HyperelasticBody& body, const Eigen::VectorXd& x,
+                                  bool project, double scale, BodyEnergy* energy,
+                                  Eigen::VectorXd* gradient)
+{
+  const std::size_t workers = static_cast<std::size_t>(worker_count());
+  m_worker_values.resize(workers - 1);
+  std::vector<char> ran(workers, 0);
+  const auto count = static_cast<std::size_t>(m_matrix.nonZeros());
+  int projected = 0;
+  const BodyEnergy sum = body.stiffness_pass(x, project, gradient, projected,
+                                             [&](Eigen::Index e, const Matrix12d& H, int worker) {
+                                               const auto w = static_cast<std::size_t>(worker);
+                                               if (w == 0) {
+                                                 scatter(e, H, scale, m_matrix.valuePtr());
+                                                 return;
+                                               }
+                                               if (!ran[w]) {
+                                                 ran[w] = 1;
+                                                 m_worker_values[w - 1].assign(count, 0.0);
+                                               }
+                                               scatter(e, H, scale, m_worker_values[w - 1].data());
+                                             });
+  if (energy)
+    *energy = sum;
+  // Each entry sums the workers' parts in worker order, whatever the slicing of the entries.
+  parallel_slices(static_cast<std::ptrdiff_t>(count),
+                  [&](std::ptrdiff_t begin, std::ptrdiff_t end, int) {
+                    double* values = m_matrix.valuePtr();
+                    for (std::size_t w = 1; w < workers; ++w)
+                      if (ran[w])
+                        for (std::ptrdiff_t i = begin; i < end; ++i)
+                          values[i] += m_worker_values[w - 1][static_cast<std::size_t>(i)];
+                  });
+  return projected;
 }
 
 void StiffnessMatrix::add_node_block(int node, const Eigen::Matrix3d& B, double scale)

@@ -5,6 +5,7 @@
 #include "common/mesh.hpp"
 #include "sim/material/weiss_material.hpp"
 #include "sim/solver/boundary_conditions.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/SparseCore>
 
@@ -22,8 +23,16 @@ public:
   Eigen::Index nonzeros() const { return m_matrix.nonZeros(); }
 
   void set_zero();
-  /// Adds scale * H_e of element e (node-major 12 x 12) to the free-DOF entries.
-  void add_element(Eigen::Index e, const Matrix12d& H, double scale = 1.0);
+  /// Adds scale * K(x) of `body` (the mesh this matrix was made for), each element's stiffness
+  /// projected to positive semi-definite when `project`; returns how many needed the
+  /// projection. `x` must have no inverted element. The elements are split over the workers,
+  /// each scattering into its own copy of the values; the copies are summed in worker order.
+  /// With `energy` and `gradient` (either may be null), the same pass gives the body's energy
+  /// and gradient as HyperelasticBody::energy_gradient(); an inverted element is then reported
+  /// there (and adds nothing), instead of being a precondition.
+  int add_elements(const HyperelasticBody& body, const Eigen::VectorXd& x, bool project,
+                   double scale = 1.0, BodyEnergy* energy = nullptr,
+                   Eigen::VectorXd* gradient = nullptr);
   /// Adds scale * B (3 x 3) to the free entries of node n's own diagonal block.
   void add_node_block(int node, const Eigen::Matrix3d& B, double scale = 1.0);
   /// Adds `diagonal` (one value per free DOF) to the diagonal.
@@ -32,12 +41,18 @@ public:
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
 private:
-  /// Local pairs (p <= q) of a 12 x 12 block, in the order of m_scatter's entries.
+  /// Adds scale * H_e of element e (node-major 12 x 12) into `values` (laid out as the
+  /// matrix's), at its free-DOF entries.
+  void scatter(Eigen::Index e, const Matrix12d& H, double scale, double* values) const;
+
+  /// Local pairs (p <= q) of a 12 x 12 block, column by column (q outer), the order of
+  /// m_scatter's entries.
   static constexpr int pair_count = 78;
   Eigen::SparseMatrix<double> m_matrix;
   std::vector<int> m_scatter;   ///< pair_count value positions per element, -1 when prescribed
   std::vector<int> m_diagonal;  ///< value position of each column's diagonal
   std::vector<int> m_node_free; ///< free index of each DOF (-1: prescribed), node-major
+  std::vector<std::vector<double>> m_worker_values; ///< values of workers 1, 2, ... in add_elements
 };
 
 } // namespace ligsim::sim

@@ -9,7 +9,6 @@ namespace ligsim::sim {
 
 namespace {
 
-constexpr Eigen::Index chunk_size = 4096;
 /// Inverse iterations: the eigenvalue nearest zero is well separated near a critical point.
 constexpr int inverse_iterations = 30;
 /// Below this load alignment a mode counts as orthogonal to the load.
@@ -32,71 +31,54 @@ std::string StabilityMode::describe() const
                      peak_direction.z());
 }
 
-CholmodLdlt::CholmodLdlt()
-{
-  cholmod().print = 0;
-  cholmod().nmethods = 1;
-  cholmod().method[0].ordering = CHOLMOD_METIS; // less fill than AMD on 3-D meshes
-}
-
-Eigen::VectorXd CholmodLdlt::pivots() const
-{
-  const cholmod_factor* L = m_cholmodFactor;
-  if (!L || L->is_super || L->is_ll)
-    return {};
-  // Simplicial L D L^T: each column starts with its diagonal entry, which holds D.
-  const auto* p = static_cast<const int*>(L->p);
-  const auto* values = static_cast<const double*>(L->x);
-  Eigen::VectorXd d(static_cast<Eigen::Index>(L->n));
-  for (std::size_t j = 0; j < L->n; ++j)
-    d(static_cast<Eigen::Index>(j)) = values[p[j]];
-  return d;
-}
-
 TangentInertia::TangentInertia(const HyperelasticBody& body, const DofPartition& dofs)
+    : TangentInertia(body, dofs, nullptr)
+{
+}
+
+TangentInertia::TangentInertia(const HyperelasticBody& body, const DofPartition& dofs,
+                               DirectCholesky* shared)
     : m_body(body)
     , m_dofs(dofs)
-    , m_stiffness(body.mesh().T, dofs)
-    , m_chunk(static_cast<std::size_t>(std::min<Eigen::Index>(chunk_size, body.element_count())))
+    , m_direct(shared)
 {
 }
+
+TangentInertia::~TangentInertia() = default;
 
 bool TangentInertia::factorize(const Eigen::VectorXd& x)
 {
-  m_stiffness.set_zero();
-  const Eigen::Index count = m_body.element_count();
-  for (Eigen::Index begin = 0; begin < count; begin += chunk_size) {
-    const Eigen::Index end = std::min(count, begin + chunk_size);
-    m_body.element_hessians(x, begin, end, false, m_chunk.data());
-    for (Eigen::Index e = begin; e < end; ++e)
-      m_stiffness.add_element(e, m_chunk[static_cast<std::size_t>(e - begin)]);
+  if (!m_direct) {
+    m_own = std::make_unique<DirectCholesky>(m_body, m_dofs);
+    m_direct = m_own.get();
   }
-  if (!m_analyzed) {
-    m_ldlt.analyzePattern(m_stiffness.matrix());
-    m_analyzed = true;
+  if (m_direct->holds_tangent(x)) {
+    m_ok = true;
+    return m_ok;
   }
-  m_ldlt.factorize(m_stiffness.matrix());
-  m_pivots = m_ldlt.info() == Eigen::Success ? m_ldlt.pivots() : Eigen::VectorXd();
-  m_ok = m_pivots.size() == m_stiffness.matrix().rows() && m_pivots.allFinite() &&
-         (m_pivots.array() != 0.0).all();
+  m_direct->prepare(m_body, x, false, 1.0, Eigen::VectorXd(), {});
+  m_ok = m_direct->factorize();
+  ++m_factorizations;
   return m_ok;
 }
 
 int TangentInertia::negative_eigenvalues() const
 {
-  return m_ok ? static_cast<int>((m_pivots.array() < 0.0).count()) : -1;
+  return m_ok ? m_direct->factor().negative_pivots() : -1;
 }
 
 Eigen::VectorXd TangentInertia::solve(const Eigen::VectorXd& b) const
 {
-  return m_ldlt.solve(b);
+  return m_ok ? m_direct->factor().solve(b) : Eigen::VectorXd();
 }
 
 StabilityMode TangentInertia::lowest_mode(const Eigen::VectorXd& load) const
 {
   StabilityMode mode;
   mode.negative_eigenvalues = negative_eigenvalues();
-  const Eigen::Index n = m_stiffness.matrix().rows();
+  if (!m_ok)
+    return mode;
+  const Eigen::Index n = m_dofs.free_count();
   // A fixed, non-symmetric start so the result does not depend on a random seed and is not
   // orthogonal to a symmetric or antisymmetric mode.
   Eigen::VectorXd v(n);
@@ -105,12 +87,12 @@ StabilityMode TangentInertia::lowest_mode(const Eigen::VectorXd& load) const
   v.normalize();
   Eigen::VectorXd Kv;
   for (int k = 0; k < inverse_iterations; ++k) {
-    Eigen::VectorXd w = m_ldlt.solve(v);
+    Eigen::VectorXd w = solve(v);
     if (!w.allFinite() || w.norm() == 0.0)
       break;
     v = w.normalized();
   }
-  m_stiffness.multiply(v, Kv);
+  m_direct->multiply(v, Kv);
   mode.eigenvalue = v.dot(Kv);
   mode.load_alignment = load.norm() > 0.0 ? std::abs(v.dot(load)) / load.norm() : 0.0;
   const auto& free_dofs = m_dofs.free_dofs();

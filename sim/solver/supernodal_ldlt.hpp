@@ -1,0 +1,76 @@
+#pragma once
+/// @brief Sparse L D L^T (L unit lower, D diagonal, no pivoting) in supernodes: CHOLMOD's
+/// symbolic analysis (METIS ordering, relaxed supernodes) once per pattern, then a left-looking
+/// numeric factorisation with dense BLAS blocks. It factorises indefinite matrices unless a pivot
+/// is zero, so one factorisation gives the solve and the inertia (Sylvester: the negative pivots
+/// count the negative eigenvalues), at the speed of the supernodal Cholesky.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <cstddef>
+#include <vector>
+
+namespace ligsim::sim {
+
+class SupernodalLdlt {
+public:
+  /// Symbolic analysis of the pattern of `lower` (the lower triangle with the diagonal, CSC,
+  /// compressed). Later factorisations must use the same pattern.
+  void analyze(const Eigen::SparseMatrix<double>& lower);
+  bool analyzed() const { return m_n >= 0; }
+
+  /// Numeric factorisation; false when a pivot is zero or not finite (the factor is then
+  /// unusable). Requires analyze() on the same pattern.
+  bool factorize(const Eigen::SparseMatrix<double>& lower);
+  /// The last factorize() succeeded.
+  bool ok() const { return m_ok; }
+
+  /// Solves A y = b with the factor (vectors in the matrix's numbering).
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Pivots D of the last successful factorisation, in elimination order (empty otherwise).
+  const Eigen::VectorXd& pivots() const { return m_pivots; }
+  /// Negative pivots: the matrix's negative eigenvalues (-1 without a factor).
+  int negative_pivots() const { return m_ok ? m_negative : -1; }
+  /// Floating-point operations of one factorisation (multiply-adds counted as two).
+  double factorization_flops() const { return m_flops; }
+  /// Stored entries of L (with the explicit zeros of relaxed supernodes).
+  std::size_t factor_entries() const { return m_values.size(); }
+  /// Estimated time of one factorisation in units of reading one factor entry in a solve (a
+  /// solve costs about factor_entries()): from the flops, the scattered updates and their count.
+  double factorization_cost() const { return m_cost; }
+
+private:
+  /// Sets m_cost from the symbolic structure.
+  void estimate_cost();
+  /// Adds the update of descendant supernode d (its rows from `first`) into supernode s.
+  void apply_descendant(int d, int first, int s);
+  /// Dense L D L^T of supernode s's columns (its diagonal block and the rows below).
+  bool factorize_supernode(int s);
+
+  int m_n = -1;
+  std::vector<int> m_perm;      ///< elimination order: row m_perm[k] of A is eliminated k-th
+  std::vector<int> m_super;     ///< first column of each supernode, #supernodes + 1
+  std::vector<int> m_row_start; ///< start of each supernode's rows in m_rows, #supernodes + 1
+  std::vector<std::ptrdiff_t> m_value_start; ///< start of each supernode's block in m_values
+  std::vector<int> m_rows;                   ///< row indices (elimination order) per supernode
+  std::vector<int> m_column_super;           ///< supernode of each column
+  std::vector<std::ptrdiff_t> m_scatter;     ///< position in m_values of each entry of A
+  std::vector<double> m_values;              ///< column-major blocks, #rows x #columns each
+  int m_tallest = 1;                         ///< rows of the tallest supernode
+  Eigen::VectorXd m_pivots;
+  double m_flops = 0.0;
+  double m_cost = 0.0;
+  bool m_ok = false;
+  int m_negative = 0;
+
+  // Workspace of the numeric factorisation.
+  std::vector<int> m_local_row; ///< row (elimination order) -> row within the current supernode
+  std::vector<int> m_head;      ///< descendants waiting to update each supernode (linked list)
+  std::vector<int> m_next;
+  std::vector<int> m_position; ///< each supernode's next row to update with
+  std::vector<double> m_update;
+  std::vector<double> m_scaled;
+};
+
+} // namespace ligsim::sim
