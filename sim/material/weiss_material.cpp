@@ -135,19 +135,32 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   // d^2J/dQ_i dQ_j = -[w]x with w = F (D_i x D_j): the current edge opposite to i and j over
   // 6 V0, as in eq. 8.
   const double scale_hj = through_j * s_j + volumetric.d1;
+  const double diagonal_t = mu * s;
+  const double diagonal_a = 2.0 * phi * s;
   for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
+    for (int j = i; j < 4; ++j) {
       const double diagonal =
-          mu * s * D.row(i).dot(D.row(j)) + 2.0 * phi * s * a_dot_d(i) * a_dot_d(j);
+          diagonal_t * D.row(i).dot(D.row(j)) + diagonal_a * a_dot_d(i) * a_dot_d(j);
       for (int a = 0; a < 3; ++a)
         H(3 * i + a, 3 * j + a) += diagonal;
-    }
-    for (int j = i + 1; j < 4; ++j) {
+      if (j == i)
+        continue;
+      for (int a = 0; a < 3; ++a)
+        H(3 * j + a, 3 * i + a) += diagonal;
+      // Block (i, j) += [w]x^T, block (j, i) += [w]x.
       const Eigen::Vector3d w = scale_hj * (F * D.row(i).transpose().cross(D.row(j).transpose()));
-      Eigen::Matrix3d block;
-      block << 0.0, w(2), -w(1), -w(2), 0.0, w(0), w(1), -w(0), 0.0;
-      H.block<3, 3>(3 * i, 3 * j) += block;
-      H.block<3, 3>(3 * j, 3 * i) += block.transpose();
+      H(3 * i, 3 * j + 1) += w(2);
+      H(3 * i, 3 * j + 2) -= w(1);
+      H(3 * i + 1, 3 * j) -= w(2);
+      H(3 * i + 1, 3 * j + 2) += w(0);
+      H(3 * i + 2, 3 * j) += w(1);
+      H(3 * i + 2, 3 * j + 1) -= w(0);
+      H(3 * j + 1, 3 * i) += w(2);
+      H(3 * j + 2, 3 * i) -= w(1);
+      H(3 * j, 3 * i + 1) -= w(2);
+      H(3 * j + 2, 3 * i + 1) += w(0);
+      H(3 * j, 3 * i + 2) += w(1);
+      H(3 * j + 1, 3 * i + 2) -= w(0);
     }
   }
   H *= V0;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 extern "C" {
@@ -23,6 +25,8 @@ namespace {
 
 /// Columns per panel of the dense factorisation inside a supernode.
 constexpr int panel_width = 32;
+/// Doubles of one block of a descendant's update (taller updates go in blocks of rows).
+constexpr std::size_t update_capacity = std::size_t{1} << 17;
 /// Cost model of a factorisation, in units of one factor entry read by a triangular solve:
 /// per flop of the dense blocks, per update entry scattered into an ancestor, and per update
 /// (a BLAS call and its bookkeeping). Fitted to single-threaded timings of the FEBio cube
@@ -55,11 +59,56 @@ void single_threaded_blas()
   (void)done;
 }
 
-} // namespace
-
-void SupernodalLdlt::analyze(const Eigen::SparseMatrix<double>& lower)
+/// Walks the supernodes in elimination order: for each, begin(s), update(d, first, last, s) for
+/// every descendant d that updates it (d's rows [first, last) are columns of s), then finish(s);
+/// false as soon as finish returns false. `head`, `next`, `position`: workspace, one per
+/// supernode.
+template <class Begin, class Update, class Finish>
+bool walk_supernodes(const SupernodalSymbolic& symbolic, std::vector<int>& head,
+                     std::vector<int>& next, std::vector<int>& position, Begin&& begin,
+                     Update&& update, Finish&& finish)
 {
-  single_threaded_blas();
+  std::fill(head.begin(), head.end(), -1);
+  // Queues d for the supernode of its row `from`, if it has one.
+  auto link = [&](int d, int from) {
+    const int height = symbolic.row_start[d + 1] - symbolic.row_start[d];
+    if (from == height)
+      return;
+    const int row = symbolic.rows[static_cast<std::size_t>(symbolic.row_start[d] + from)];
+    const auto ancestor =
+        static_cast<std::size_t>(symbolic.column_super[static_cast<std::size_t>(row)]);
+    position[static_cast<std::size_t>(d)] = from;
+    next[static_cast<std::size_t>(d)] = head[ancestor];
+    head[ancestor] = d;
+  };
+  for (int s = 0; s < symbolic.supernodes(); ++s) {
+    begin(s);
+    for (int d = head[static_cast<std::size_t>(s)]; d >= 0;) {
+      const int following = next[static_cast<std::size_t>(d)];
+      const int* rows = symbolic.rows.data() + symbolic.row_start[d];
+      const int height = symbolic.row_start[d + 1] - symbolic.row_start[d];
+      const int first = position[static_cast<std::size_t>(d)];
+      int last = first;
+      while (last < height && rows[last] < symbolic.super[s + 1])
+        ++last;
+      update(d, first, last, s);
+      link(d, last);
+      d = following;
+    }
+    if (!finish(s))
+      return false;
+    link(s, symbolic.super[s + 1] - symbolic.super[s]);
+  }
+  return true;
+}
+
+std::shared_ptr<SupernodalSymbolic> analyse(const Eigen::SparseMatrix<double>& lower)
+{
+  auto symbolic = std::make_shared<SupernodalSymbolic>();
+  SupernodalSymbolic& a = *symbolic;
+  a.pattern_outer.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.outerSize() + 1);
+  a.pattern_inner.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
+
   cholmod_common common;
   cholmod_start(&common);
   common.print = 0;
@@ -92,156 +141,150 @@ void SupernodalLdlt::analyze(const Eigen::SparseMatrix<double>& lower)
   const auto* pi = static_cast<const int*>(L->pi);
   const auto* px = static_cast<const int*>(L->px);
   const auto* s = static_cast<const int*>(L->s);
-  m_perm.assign(perm, perm + n);
-  m_super.assign(super, super + supernodes + 1);
-  m_row_start.assign(pi, pi + supernodes + 1);
-  m_value_start.assign(px, px + supernodes + 1);
-  m_rows.assign(s, s + L->ssize);
-  m_values.assign(L->xsize, 0.0);
-  m_update.resize(std::max<std::size_t>(L->maxcsize, 1));
-  m_flops = common.fl;
+  a.perm.assign(perm, perm + n);
+  a.super.assign(super, super + supernodes + 1);
+  a.row_start.assign(pi, pi + supernodes + 1);
+  a.value_start.assign(px, px + supernodes + 1);
+  a.rows.assign(s, s + L->ssize);
+  a.value_count = L->xsize;
+  a.flops = common.fl;
   cholmod_free_factor(&L, &common);
   cholmod_finish(&common);
 
-  m_column_super.resize(static_cast<std::size_t>(n));
-  std::size_t widest = 1;
+  a.column_super.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < supernodes; ++k) {
-    const int width = m_super[k + 1] - m_super[k];
-    widest = std::max(widest, static_cast<std::size_t>(width));
-    for (int c = m_super[k]; c < m_super[k + 1]; ++c) {
-      m_column_super[static_cast<std::size_t>(c)] = k;
+    const int height = a.row_start[k + 1] - a.row_start[k];
+    const int width = a.super[k + 1] - a.super[k];
+    a.tallest = std::max(a.tallest, height);
+    // The panels' kept rows (see factorize_supernode).
+    a.scratch_size = std::max(a.scratch_size, static_cast<std::size_t>(width) * panel_width);
+    for (int c = a.super[k]; c < a.super[k + 1]; ++c) {
+      a.column_super[static_cast<std::size_t>(c)] = k;
       // A supernode's rows start with its own columns, in order.
-      if (m_rows[static_cast<std::size_t>(m_row_start[k] + c - m_super[k])] != c)
+      if (a.rows[static_cast<std::size_t>(a.row_start[k] + c - a.super[k])] != c)
         throw std::runtime_error("sparse L D L^T: unexpected supernode layout");
     }
   }
-  std::size_t tallest = 1;
-  for (int k = 0; k < supernodes; ++k)
-    tallest = std::max(tallest, static_cast<std::size_t>(m_row_start[k + 1] - m_row_start[k]));
-  m_scaled.resize(tallest * widest);
-  m_tallest = static_cast<int>(tallest);
 
   // Where each entry of A lands in the blocks of L (in elimination order).
   std::vector<int> inverse(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k)
-    inverse[static_cast<std::size_t>(m_perm[static_cast<std::size_t>(k)])] = k;
-  m_scatter.resize(static_cast<std::size_t>(lower.nonZeros()));
+    inverse[static_cast<std::size_t>(a.perm[static_cast<std::size_t>(k)])] = k;
+  a.scatter.resize(static_cast<std::size_t>(lower.nonZeros()));
   for (int j = 0; j < n; ++j)
     for (int p = lower.outerIndexPtr()[j]; p < lower.outerIndexPtr()[j + 1]; ++p) {
-      const int a = inverse[static_cast<std::size_t>(lower.innerIndexPtr()[p])];
-      const int b = inverse[static_cast<std::size_t>(j)];
-      const int column = std::min(a, b);
-      const int row = std::max(a, b);
-      const int k = m_column_super[static_cast<std::size_t>(column)];
-      const int height = m_row_start[k + 1] - m_row_start[k];
-      const int width = m_super[k + 1] - m_super[k];
-      int local = row - m_super[k];
-      if (row >= m_super[k + 1]) {
-        const int* first = m_rows.data() + m_row_start[k] + width;
-        const int* last = m_rows.data() + m_row_start[k + 1];
-        local = width + static_cast<int>(std::lower_bound(first, last, row) - first);
+      const int first = inverse[static_cast<std::size_t>(lower.innerIndexPtr()[p])];
+      const int second = inverse[static_cast<std::size_t>(j)];
+      const int column = std::min(first, second);
+      const int row = std::max(first, second);
+      const int k = a.column_super[static_cast<std::size_t>(column)];
+      const int height = a.row_start[k + 1] - a.row_start[k];
+      const int width = a.super[k + 1] - a.super[k];
+      int local = row - a.super[k];
+      if (row >= a.super[k + 1]) {
+        const int* begin = a.rows.data() + a.row_start[k] + width;
+        const int* end = a.rows.data() + a.row_start[k + 1];
+        local = width + static_cast<int>(std::lower_bound(begin, end, row) - begin);
       }
-      m_scatter[static_cast<std::size_t>(p)] =
-          m_value_start[static_cast<std::size_t>(k)] +
-          static_cast<std::ptrdiff_t>(column - m_super[k]) * height + local;
+      a.scatter[static_cast<std::size_t>(p)] =
+          a.value_start[static_cast<std::size_t>(k)] +
+          static_cast<std::ptrdiff_t>(column - a.super[k]) * height + local;
     }
-  m_local_row.assign(static_cast<std::size_t>(n), 0);
-  m_head.assign(static_cast<std::size_t>(supernodes), -1);
-  m_next.assign(static_cast<std::size_t>(supernodes), -1);
-  m_position.assign(static_cast<std::size_t>(supernodes), 0);
-  m_n = n;
-  m_ok = false;
-  estimate_cost();
-}
 
-void SupernodalLdlt::estimate_cost()
-{
-  // The descendant updates of a factorisation, walked without the arithmetic.
-  const int supernodes = static_cast<int>(m_super.size()) - 1;
+  // The descendant updates, walked without the arithmetic: cost and scratch space.
   double updates = 0.0;
   double update_entries = 0.0;
-  std::fill(m_head.begin(), m_head.end(), -1);
-  auto link = [&](int d, int position) {
-    const int* rows = m_rows.data() + m_row_start[d];
-    if (position < m_row_start[d + 1] - m_row_start[d]) {
-      m_position[static_cast<std::size_t>(d)] = position;
-      const int ancestor = m_column_super[static_cast<std::size_t>(rows[position])];
-      m_next[static_cast<std::size_t>(d)] = m_head[static_cast<std::size_t>(ancestor)];
-      m_head[static_cast<std::size_t>(ancestor)] = d;
-    }
-  };
-  for (int s = 0; s < supernodes; ++s) {
-    for (int d = m_head[static_cast<std::size_t>(s)]; d >= 0;) {
-      const int next = m_next[static_cast<std::size_t>(d)];
-      const int* rows = m_rows.data() + m_row_start[d];
-      const int height = m_row_start[d + 1] - m_row_start[d];
-      const int first = m_position[static_cast<std::size_t>(d)];
-      int last = first;
-      while (last < height && rows[last] < m_super[s + 1])
-        ++last;
-      updates += 1.0;
-      update_entries += static_cast<double>(height - first) * (last - first);
-      link(d, last);
-      d = next;
-    }
-    link(s, m_super[s + 1] - m_super[s]);
+  std::vector<int> head(static_cast<std::size_t>(supernodes));
+  std::vector<int> next(head.size());
+  std::vector<int> position(head.size());
+  walk_supernodes(
+      a, head, next, position, [](int) {},
+      [&](int d, int first, int last, int) {
+        const int height = a.row_start[d + 1] - a.row_start[d];
+        const int width = a.super[d + 1] - a.super[d];
+        updates += 1.0;
+        update_entries += static_cast<double>(height - first) * (last - first);
+        a.scratch_size = std::max(a.scratch_size, static_cast<std::size_t>(last - first) * width);
+      },
+      [](int) { return true; });
+  a.cost =
+      cost_per_flop * a.flops + cost_per_update_entry * update_entries + cost_per_update * updates;
+  return symbolic;
+}
+
+} // namespace
+
+bool SupernodalSymbolic::matches(const Eigen::SparseMatrix<double>& lower) const
+{
+  return static_cast<std::size_t>(lower.outerSize()) + 1 == pattern_outer.size() &&
+         static_cast<std::size_t>(lower.nonZeros()) == pattern_inner.size() &&
+         std::equal(pattern_outer.begin(), pattern_outer.end(), lower.outerIndexPtr()) &&
+         std::equal(pattern_inner.begin(), pattern_inner.end(), lower.innerIndexPtr());
+}
+
+void SupernodalLdlt::analyze(const Eigen::SparseMatrix<double>& lower)
+{
+  single_threaded_blas();
+  static std::mutex mutex;
+  static std::shared_ptr<const SupernodalSymbolic> last;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    m_symbolic = last && last->matches(lower) ? last : nullptr;
   }
-  m_cost =
-      cost_per_flop * m_flops + cost_per_update_entry * update_entries + cost_per_update * updates;
+  if (!m_symbolic) {
+    m_symbolic = analyse(lower);
+    const std::lock_guard<std::mutex> lock(mutex);
+    last = m_symbolic;
+  }
+  const SupernodalSymbolic& a = *m_symbolic;
+  m_values.assign(a.value_count, 0.0);
+  m_local_row.assign(static_cast<std::size_t>(a.size()), 0);
+  m_head.assign(static_cast<std::size_t>(a.supernodes()), -1);
+  m_next.assign(m_head.size(), -1);
+  m_position.assign(m_head.size(), 0);
+  m_scaled.resize(a.scratch_size);
+  m_update.resize(update_capacity);
+  m_ok = false;
 }
 
 bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& lower)
 {
+  const SupernodalSymbolic& a = *m_symbolic;
   m_ok = false;
   std::fill(m_values.begin(), m_values.end(), 0.0);
-  const double* a = lower.valuePtr();
-  for (std::size_t p = 0; p < m_scatter.size(); ++p)
-    m_values[static_cast<std::size_t>(m_scatter[p])] += a[p];
-  m_pivots.resize(m_n);
+  const double* values = lower.valuePtr();
+  for (std::size_t p = 0; p < a.scatter.size(); ++p)
+    m_values[static_cast<std::size_t>(a.scatter[p])] += values[p];
+  m_pivots.resize(a.size());
   m_negative = 0;
-  const int supernodes = static_cast<int>(m_super.size()) - 1;
-  std::fill(m_head.begin(), m_head.end(), -1);
-  for (int s = 0; s < supernodes; ++s) {
-    const int first_row = m_row_start[s];
-    const int height = m_row_start[s + 1] - first_row;
-    for (int r = 0; r < height; ++r)
-      m_local_row[static_cast<std::size_t>(m_rows[static_cast<std::size_t>(first_row + r)])] = r;
-    for (int d = m_head[static_cast<std::size_t>(s)]; d >= 0;) {
-      const int next = m_next[static_cast<std::size_t>(d)];
-      apply_descendant(d, m_position[static_cast<std::size_t>(d)], s);
-      d = next;
-    }
-    if (!factorize_supernode(s)) {
-      m_pivots.resize(0);
-      return false;
-    }
-    const int width = m_super[s + 1] - m_super[s];
-    if (height > width) {
-      m_position[static_cast<std::size_t>(s)] = width;
-      const int ancestor = m_column_super[static_cast<std::size_t>(
-          m_rows[static_cast<std::size_t>(first_row + width)])];
-      m_next[static_cast<std::size_t>(s)] = m_head[static_cast<std::size_t>(ancestor)];
-      m_head[static_cast<std::size_t>(ancestor)] = s;
-    }
+  const bool ok = walk_supernodes(
+      a, m_head, m_next, m_position,
+      [&](int s) {
+        for (int r = a.row_start[s]; r < a.row_start[s + 1]; ++r)
+          m_local_row[static_cast<std::size_t>(a.rows[static_cast<std::size_t>(r)])] =
+              r - a.row_start[s];
+      },
+      [&](int d, int first, int last, int s) { apply_descendant(d, first, last, s); },
+      [&](int s) { return factorize_supernode(s); });
+  if (!ok) {
+    m_pivots.resize(0);
+    return false;
   }
   m_ok = true;
   return true;
 }
 
-void SupernodalLdlt::apply_descendant(int d, int first, int s)
+void SupernodalLdlt::apply_descendant(int d, int first, int last, int s)
 {
-  const int* rows = m_rows.data() + m_row_start[d];
-  const int height = m_row_start[d + 1] - m_row_start[d];
-  const int width = m_super[d + 1] - m_super[d];
-  const double* L = m_values.data() + m_value_start[static_cast<std::size_t>(d)];
-  const int end_column = m_super[s + 1];
-  int last = first;
-  while (last < height && rows[last] < end_column)
-    ++last;
+  const SupernodalSymbolic& a = *m_symbolic;
+  const int* rows = a.rows.data() + a.row_start[d];
+  const int height = a.row_start[d + 1] - a.row_start[d];
+  const int width = a.super[d + 1] - a.super[d];
+  const double* L = m_values.data() + a.value_start[static_cast<std::size_t>(d)];
   const int inside = last - first; // rows of d that are columns of s
   const int below = height - first;
 
-  // update = L_d(first:, :) D_d L_d(first:last, :)^T, below x inside.
+  // update = L_d(first:, :) D_d L_d(first:last, :)^T, below x inside, in blocks of rows.
   double* scaled = m_scaled.data();
   for (int c = 0; c < width; ++c) {
     const double pivot = L[c + static_cast<std::ptrdiff_t>(c) * height];
@@ -249,35 +292,32 @@ void SupernodalLdlt::apply_descendant(int d, int first, int s)
     for (int r = 0; r < inside; ++r)
       scaled[r + static_cast<std::ptrdiff_t>(c) * inside] = column[r] * pivot;
   }
-  if (m_update.size() < static_cast<std::size_t>(below) * static_cast<std::size_t>(inside))
-    m_update.resize(static_cast<std::size_t>(below) * static_cast<std::size_t>(inside));
+  double* target = m_values.data() + a.value_start[static_cast<std::size_t>(s)];
+  const int target_height = a.row_start[s + 1] - a.row_start[s];
+  const int first_column = a.super[s];
+  const int block =
+      std::max(1, static_cast<int>(update_capacity / static_cast<std::size_t>(inside)));
   double* update = m_update.data();
-  gemm_nt(below, inside, width, 1.0, L + first, height, scaled, inside, 0.0, update, below);
-
-  double* target = m_values.data() + m_value_start[static_cast<std::size_t>(s)];
-  const int target_height = m_row_start[s + 1] - m_row_start[s];
-  const int first_column = m_super[s];
-  for (int j = 0; j < inside; ++j) {
-    double* column =
-        target + static_cast<std::ptrdiff_t>(rows[first + j] - first_column) * target_height;
-    const double* from = update + static_cast<std::ptrdiff_t>(j) * below;
-    for (int i = j; i < below; ++i)
-      column[m_local_row[static_cast<std::size_t>(rows[first + i])]] -= from[i];
-  }
-
-  m_position[static_cast<std::size_t>(d)] = last;
-  if (last < height) {
-    const int ancestor = m_column_super[static_cast<std::size_t>(rows[last])];
-    m_next[static_cast<std::size_t>(d)] = m_head[static_cast<std::size_t>(ancestor)];
-    m_head[static_cast<std::size_t>(ancestor)] = d;
+  for (int begin = 0; begin < below; begin += block) {
+    const int count = std::min(block, below - begin);
+    gemm_nt(count, inside, width, 1.0, L + first + begin, height, scaled, inside, 0.0, update,
+            count);
+    for (int j = 0; j < inside; ++j) {
+      double* column =
+          target + static_cast<std::ptrdiff_t>(rows[first + j] - first_column) * target_height;
+      const double* from = update + static_cast<std::ptrdiff_t>(j) * count - begin;
+      for (int i = std::max(j, begin); i < begin + count; ++i)
+        column[m_local_row[static_cast<std::size_t>(rows[first + i])]] -= from[i];
+    }
   }
 }
 
 bool SupernodalLdlt::factorize_supernode(int s)
 {
-  const int height = m_row_start[s + 1] - m_row_start[s];
-  const int width = m_super[s + 1] - m_super[s];
-  double* L = m_values.data() + m_value_start[static_cast<std::size_t>(s)];
+  const SupernodalSymbolic& a = *m_symbolic;
+  const int height = a.row_start[s + 1] - a.row_start[s];
+  const int width = a.super[s + 1] - a.super[s];
+  double* L = m_values.data() + a.value_start[static_cast<std::size_t>(s)];
   auto at = [&](int r, int c) -> double& { return L[r + static_cast<std::ptrdiff_t>(c) * height]; };
   for (int begin = 0; begin < width; begin += panel_width) {
     const int size = std::min(panel_width, width - begin);
@@ -294,7 +334,7 @@ bool SupernodalLdlt::factorize_supernode(int s)
         return false;
       for (int r = j + 1; r < end; ++r)
         at(r, j) /= pivot;
-      m_pivots(m_super[s] + j) = pivot;
+      m_pivots(a.super[s] + j) = pivot;
       m_negative += pivot < 0.0 ? 1 : 0;
     }
     const int rest = height - end; // rows below the panel's diagonal block
@@ -326,45 +366,47 @@ bool SupernodalLdlt::factorize_supernode(int s)
 Eigen::VectorXd SupernodalLdlt::solve(const Eigen::VectorXd& b) const
 {
   using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-  Eigen::VectorXd y(m_n);
-  for (int k = 0; k < m_n; ++k)
-    y(k) = b(m_perm[static_cast<std::size_t>(k)]);
-  Eigen::VectorXd scratch(m_tallest);
-  const int supernodes = static_cast<int>(m_super.size()) - 1;
+  const SupernodalSymbolic& a = *m_symbolic;
+  const int n = a.size();
+  Eigen::VectorXd y(n);
+  for (int k = 0; k < n; ++k)
+    y(k) = b(a.perm[static_cast<std::size_t>(k)]);
+  Eigen::VectorXd scratch(a.tallest);
+  const int supernodes = a.supernodes();
   for (int s = 0; s < supernodes; ++s) {
-    const int width = m_super[s + 1] - m_super[s];
-    const int height = m_row_start[s + 1] - m_row_start[s];
-    const Block L(m_values.data() + m_value_start[static_cast<std::size_t>(s)], height, width,
+    const int width = a.super[s + 1] - a.super[s];
+    const int height = a.row_start[s + 1] - a.row_start[s];
+    const Block L(m_values.data() + a.value_start[static_cast<std::size_t>(s)], height, width,
                   Eigen::OuterStride<>(height));
-    Eigen::Ref<Eigen::VectorXd> x = y.segment(m_super[s], width);
+    Eigen::Ref<Eigen::VectorXd> x = y.segment(a.super[s], width);
     L.topRows(width).triangularView<Eigen::UnitLower>().solveInPlace(x);
     const int below = height - width;
     if (below == 0)
       continue;
     scratch.head(below).noalias() = L.bottomRows(below) * x;
-    const int* rows = m_rows.data() + m_row_start[s] + width;
+    const int* rows = a.rows.data() + a.row_start[s] + width;
     for (int r = 0; r < below; ++r)
       y(rows[r]) -= scratch(r);
   }
   y.array() /= m_pivots.array();
   for (int s = supernodes - 1; s >= 0; --s) {
-    const int width = m_super[s + 1] - m_super[s];
-    const int height = m_row_start[s + 1] - m_row_start[s];
-    const Block L(m_values.data() + m_value_start[static_cast<std::size_t>(s)], height, width,
+    const int width = a.super[s + 1] - a.super[s];
+    const int height = a.row_start[s + 1] - a.row_start[s];
+    const Block L(m_values.data() + a.value_start[static_cast<std::size_t>(s)], height, width,
                   Eigen::OuterStride<>(height));
-    Eigen::Ref<Eigen::VectorXd> x = y.segment(m_super[s], width);
+    Eigen::Ref<Eigen::VectorXd> x = y.segment(a.super[s], width);
     const int below = height - width;
     if (below > 0) {
-      const int* rows = m_rows.data() + m_row_start[s] + width;
+      const int* rows = a.rows.data() + a.row_start[s] + width;
       for (int r = 0; r < below; ++r)
         scratch(r) = y(rows[r]);
       x.noalias() -= L.bottomRows(below).transpose() * scratch.head(below);
     }
     L.topRows(width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
   }
-  Eigen::VectorXd result(m_n);
-  for (int k = 0; k < m_n; ++k)
-    result(m_perm[static_cast<std::size_t>(k)]) = y(k);
+  Eigen::VectorXd result(n);
+  for (int k = 0; k < n; ++k)
+    result(a.perm[static_cast<std::size_t>(k)]) = y(k);
   return result;
 }
 

@@ -114,6 +114,33 @@ TEST(SupernodalLdlt, RefactorisesNewValuesOnTheAnalysedPattern)
   EXPECT_LT(relative_residual(second, ldlt.solve(b), b), 1e-13);
 }
 
+TEST(SupernodalLdlt, FactorsOfOnePatternShareTheLastAnalysis)
+{
+  const Eigen::SparseMatrix<double> first = grid_matrix(5, 30.0, 6);
+  const Eigen::SparseMatrix<double> same_pattern = grid_matrix(5, 20.0, 7);
+  const Eigen::SparseMatrix<double> other_pattern = grid_matrix(4, 30.0, 8);
+  SupernodalLdlt a;
+  a.analyze(first);
+  SupernodalLdlt b;
+  b.analyze(same_pattern);
+  EXPECT_EQ(&a.symbolic(), &b.symbolic());
+  SupernodalLdlt c;
+  c.analyze(other_pattern);
+  EXPECT_NE(&c.symbolic(), &a.symbolic());
+  // The last analysis is the other pattern's now: a new factor of the first pattern analyses
+  // it again, and every factor still solves its own matrix.
+  SupernodalLdlt d;
+  d.analyze(first);
+  EXPECT_NE(&d.symbolic(), &a.symbolic());
+  const std::vector<std::pair<SupernodalLdlt*, const Eigen::SparseMatrix<double>*>> cases = {
+      {&a, &first}, {&b, &same_pattern}, {&c, &other_pattern}, {&d, &first}};
+  for (const auto& [ldlt, matrix] : cases) {
+    ASSERT_TRUE(ldlt->factorize(*matrix));
+    const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(matrix->rows(), 1.0, 2.0);
+    EXPECT_LT(relative_residual(*matrix, ldlt->solve(rhs), rhs), 1e-12);
+  }
+}
+
 TEST(SupernodalLdlt, AZeroPivotFailsTheFactorisation)
 {
   Eigen::SparseMatrix<double> A = grid_matrix(4, 30.0, 5);
