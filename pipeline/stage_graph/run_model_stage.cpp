@@ -13,6 +13,8 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
+#include <optional>
+#include <tuple>
 
 namespace ligsim::pipeline {
 
@@ -25,30 +27,35 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   auto fibers_grid = read_vtu(dir / files::fibers);
   const TetMesh mesh = io::from_unstructured_grid(fibers_grid);
   const Eigen::MatrixX3d directions = io::get_array(fibers_grid->GetCellData(), "fiber");
-  const model::Model built =
+  model::Model built =
       model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
 
-  auto grid = io::to_unstructured_grid(built.mesh);
-  io::add_array(grid->GetCellData(), "fiber", built.fibers);
-  io::add_flags(grid->GetPointData(), "femur_attached", built.femur_nodes);
-  io::add_flags(grid->GetPointData(), "tibia_attached", built.tibia_nodes);
-  write_vtk(grid, dir / files::model);
-
-  // The bones beside the model, for flexion and pictures: a user's surface is copied in; one
-  // already there (from a label map) is kept as it is; a stale one of an earlier build goes.
+  // The bones, repaired once: to close the footprints where the ligament lies in them, and
+  // beside the model for flexion and pictures. A user's surface is written in; one already there
+  // (from a label map) is kept as it is; a stale one of an earlier build goes.
+  std::optional<TriangleSurface> femur, tibia;
   std::vector<std::string> bones;
-  for (const auto& [file, name] :
-       {std::pair{config.femur, files::femur}, std::pair{config.tibia, files::tibia}}) {
+  for (auto& [file, name, surface] : {std::tuple{config.femur, files::femur, &femur},
+                                      std::tuple{config.tibia, files::tibia, &tibia}}) {
     const fs::path target = dir / name;
     std::error_code ignored;
     if (file.empty()) {
       fs::remove(target, ignored);
       continue;
     }
+    *surface = load_bone(file);
     if (!fs::equivalent(file, target, ignored))
-      write_vtk(io::to_polydata(*load_bone(file)), target);
+      write_vtk(io::to_polydata(**surface), target);
     bones.push_back(name);
   }
+  const model::FootprintClosing closed =
+      model::close_footprints_in_bones(built, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr);
+
+  auto grid = io::to_unstructured_grid(built.mesh);
+  io::add_array(grid->GetCellData(), "fiber", built.fibers);
+  io::add_flags(grid->GetPointData(), "femur_attached", built.femur_nodes);
+  io::add_flags(grid->GetPointData(), "tibia_attached", built.tibia_nodes);
+  write_vtk(grid, dir / files::model);
 
   Eigen::Vector3d femoral_mean = Eigen::Vector3d::Zero();
   for (int v : areas.femur)
@@ -68,6 +75,10 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
       {"boundary_nodes", built.boundary_nodes},
       {"femur_nodes", count(built.femur_nodes)},
       {"tibia_nodes", count(built.tibia_nodes)},
+      {"footprint_nodes_inside_bone_added",
+       {{"femur", closed.femur_nodes},
+        {"tibia", closed.tibia_nodes},
+        {"rule", "a node inside its bone whose tet neighbours are mostly bound to it"}}},
       {"fiber_length", 1.0 + config.model.in_situ_strain},
       {"flexion_axis",
        {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},

@@ -21,7 +21,7 @@ namespace {
 /// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize;
 /// 3: sparse grids passed between the stages as .vdb files; 4: bones repaired into one closed
 /// shell).
-constexpr const char* kAlgorithmVersion = "ligsim-build-4";
+constexpr const char* kAlgorithmVersion = "ligsim-build-5";
 
 const Stage& find_stage(const std::string& name)
 {

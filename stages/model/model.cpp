@@ -80,6 +80,68 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
   return model;
 }
 
+namespace {
+
+/// The nodes sharing a tet with each node (itself excluded), sorted.
+std::vector<std::vector<int>> tet_neighbours(const TetMesh& mesh)
+{
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(mesh.V.rows()));
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        if (a != b)
+          neighbours[static_cast<std::size_t>(mesh.T(t, a))].push_back(mesh.T(t, b));
+  for (std::vector<int>& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+int close_in_bone(const TetMesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                  const SurfaceQuery& bone, std::vector<bool>& bound,
+                  const std::vector<bool>& bound_elsewhere)
+{
+  std::vector<char> inside(bound.size(), -1); // -1 not yet asked
+  int added = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t v = 0; v < bound.size(); ++v) {
+      if (bound[v] || bound_elsewhere[v])
+        continue;
+      int to_bone = 0, free = 0;
+      for (int w : neighbours[v])
+        ++(bound[static_cast<std::size_t>(w)] ? to_bone : free);
+      if (to_bone <= free)
+        continue;
+      if (inside[v] < 0)
+        inside[v] = bone.inside(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()) ? 1 : 0;
+      if (inside[v] == 1) {
+        bound[v] = true;
+        ++added;
+        changed = true;
+      }
+    }
+  }
+  return added;
+}
+
+} // namespace
+
+FootprintClosing close_footprints_in_bones(Model& model, const TriangleSurface* femur,
+                                           const TriangleSurface* tibia)
+{
+  const std::vector<std::vector<int>> neighbours = tet_neighbours(model.mesh);
+  FootprintClosing closing;
+  if (femur != nullptr)
+    closing.femur_nodes = close_in_bone(model.mesh, neighbours, SurfaceQuery(*femur),
+                                        model.femur_nodes, model.tibia_nodes);
+  if (tibia != nullptr)
+    closing.tibia_nodes = close_in_bone(model.mesh, neighbours, SurfaceQuery(*tibia),
+                                        model.tibia_nodes, model.femur_nodes);
+  return closing;
+}
+
 Axis default_flexion_axis(const TriangleSurface& ligament,
                           const Eigen::Vector3d& femoral_attachment)
 {

@@ -34,6 +34,22 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
                const TriangleSurface& ligament, const std::vector<int>& femur_area,
                const std::vector<int>& tibia_area, const Parameters& parameters);
 
+/// What close_footprints_in_bones did, per bone.
+struct FootprintClosing {
+  int femur_nodes = 0; ///< nodes added to the femoral footprint
+  int tibia_nodes = 0; ///< nodes added to the tibial footprint
+};
+
+/// A segmented ligament overlaps its bones where it inserts, and a footprint made of boundary
+/// nodes leaves the nodes among them free: interior nodes, and surface nodes the rule missed.
+/// Held in place by their bound neighbours, those that lie inside the bone stay there however
+/// the ligament settles. They are the insertion: a node inside a bone (ray parity against
+/// `femur`, `tibia`; either may be null) that shares tets with more nodes bound to that bone than
+/// free ones joins its footprint, repeated until none does. It does not spread along a ligament
+/// that merely lies in the bone beside its footprint, whose nodes have free neighbours.
+FootprintClosing close_footprints_in_bones(Model& model, const TriangleSurface* femur,
+                                           const TriangleSurface* tibia);
+
 /// A line: a point on it and a unit direction.
 struct Axis {
   Eigen::Vector3d point;

@@ -1,0 +1,112 @@
+#include "stages/model/model.hpp"
+#include "stages/synthetic/shapes.hpp"
+
+#include <gtest/gtest.h>
+
+namespace ligsim::model {
+namespace {
+
+/// A bar of nx x 3 x 3 nodes, 1 mm apart along x from the origin, each cube cut into the six
+/// tets of its main diagonal: its only interior nodes are (i, 1, 1).
+TetMesh bar(int nx)
+{
+  const auto node = [](int i, int j, int k) { return (i * 3 + j) * 3 + k; };
+  TetMesh mesh;
+  mesh.V.resize(nx * 9, 3);
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        mesh.V.row(node(i, j, k)) << i, j, k;
+  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  std::vector<Eigen::RowVector4i> tets;
+  for (int i = 0; i + 1 < nx; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k)
+        for (const auto& path : paths) {
+          int c[3] = {i, j, k};
+          Eigen::RowVector4i tet;
+          tet[0] = node(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[path[s]];
+            tet[s + 1] = node(c[0], c[1], c[2]);
+          }
+          tets.push_back(tet);
+        }
+  mesh.T.resize(static_cast<Eigen::Index>(tets.size()), 4);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    mesh.T.row(static_cast<Eigen::Index>(t)) = tets[t];
+  return mesh;
+}
+
+/// The bar as a model whose tibial footprint is its boundary nodes with x <= `end_mm` and whose
+/// femoral footprint is its boundary nodes at the far end.
+Model bar_model(int nx, double end_mm)
+{
+  Model model;
+  model.mesh = bar(nx);
+  const std::vector<bool> boundary = boundary_nodes(model.mesh);
+  for (Eigen::Index v = 0; v < model.mesh.V.rows(); ++v) {
+    const double x = model.mesh.V(v, 0);
+    model.tibia_nodes.push_back(boundary[v] && x <= end_mm);
+    model.femur_nodes.push_back(boundary[v] && x >= nx - 1);
+  }
+  return model;
+}
+
+int node_at(int i)
+{
+  return (i * 3 + 1) * 3 + 1;
+}
+
+TEST(FootprintClosing, InteriorNodesInsideTheBoneAmongTheFootprintJoinIt)
+{
+  Model model = bar_model(9, 2.0);
+  ASSERT_FALSE(model.tibia_nodes[node_at(1)]);
+  ASSERT_FALSE(model.tibia_nodes[node_at(2)]);
+  // The tibia holds the bar up to x = 2.5: the interior nodes at x = 1 and 2 lie in it, the
+  // first with 13 of its 14 neighbours bound, the second with 10 once the first has joined.
+  const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {2.5, 10, 10});
+  const FootprintClosing closed = close_footprints_in_bones(model, nullptr, &tibia);
+  EXPECT_EQ(closed.tibia_nodes, 2);
+  EXPECT_EQ(closed.femur_nodes, 0);
+  EXPECT_TRUE(model.tibia_nodes[node_at(1)]);
+  EXPECT_TRUE(model.tibia_nodes[node_at(2)]);
+  EXPECT_FALSE(model.tibia_nodes[node_at(3)]);
+}
+
+TEST(FootprintClosing, ANodeOutsideTheBoneStaysFreeHoweverItIsSurrounded)
+{
+  Model model = bar_model(9, 2.0);
+  // The bone ends at x = 1.5: the node at x = 2 is surrounded by the footprint but not in bone.
+  const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {1.5, 10, 10});
+  EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 1);
+  EXPECT_TRUE(model.tibia_nodes[node_at(1)]);
+  EXPECT_FALSE(model.tibia_nodes[node_at(2)]);
+}
+
+TEST(FootprintClosing, ALigamentLyingInTheBoneAwayFromItsFootprintStaysFree)
+{
+  Model model = bar_model(9, 0.0);
+  // The whole bar lies in the bone, but only its x = 0 face is bound: every interior node has
+  // more free neighbours than bound ones, and none may join.
+  const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {20, 10, 10});
+  const std::vector<bool> before = model.tibia_nodes;
+  EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 0);
+  EXPECT_EQ(model.tibia_nodes, before);
+}
+
+TEST(FootprintClosing, NodesOfTheOtherBonesFootprintAreNeverTaken)
+{
+  Model model = bar_model(9, 2.0);
+  // A femur box over the whole bar: the tibia's footprint nodes and their interior nodes are
+  // inside it, but they belong to the tibia (the interior ones have tibial, not femoral,
+  // neighbours); only the femur's own end can close.
+  const TriangleSurface femur = synthetic::box({-5, -5, -5}, {20, 10, 10});
+  const FootprintClosing closed = close_footprints_in_bones(model, &femur, nullptr);
+  EXPECT_EQ(closed.femur_nodes, 0);
+  for (Eigen::Index v = 0; v < model.mesh.V.rows(); ++v)
+    EXPECT_FALSE(model.femur_nodes[v] && model.tibia_nodes[v]) << v;
+}
+
+} // namespace
+} // namespace ligsim::model
