@@ -258,6 +258,8 @@ KneeMotion resolve_knee_motion(const KneeModel& model, const FlexionSettings& se
     }
     motion.femur_path = std::make_shared<FemurPath>(motion.jcs, std::move(path), first, last);
   } else {
+    if (settings.angles_deg.empty())
+      fail("flexion: no angles to sweep (give angles_deg, or a table with a time_s column)");
     const double last = settings.angles_deg.back();
     motion.angles_deg = settings.angles_deg;
     for (double angle : settings.angles_deg)

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 using namespace ligsim;
 using namespace ligsim::sim;
@@ -238,4 +239,98 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
   EXPECT_NE(bad.front().find("the femoral footprint reaches"), std::string::npos);
   EXPECT_GT(bad_sweep.angles.back().failed_volume_fraction, 0.5);
   EXPECT_GT(bad_sweep.angles.back().length_change_pct, 50.0);
+}
+
+namespace {
+
+/// A Grood & Suntay table with one row per pose, every coordinate at full precision; with
+/// `timed`, a time_s column (0, 1, 2, ... s) makes each row a step.
+fs::path pose_table(const std::string& name, const std::vector<JointPose>& poses,
+                    bool timed = false)
+{
+  const fs::path csv = fs::temp_directory_path() / name;
+  std::ofstream out(csv);
+  out << (timed ? "time_s," : "")
+      << "flexion_deg,varus_deg,internal_rotation_deg,lateral_mm,anterior_mm,proximal_mm\n";
+  out.precision(17);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const JointPose& p = poses[k];
+    if (timed)
+      out << k << ',';
+    out << p.flexion_deg << ',' << p.varus_deg << ',' << p.internal_rotation_deg << ','
+        << p.lateral_mm << ',' << p.anterior_mm << ',' << p.proximal_mm << '\n';
+  }
+  return csv;
+}
+
+} // namespace
+
+TEST(KneeMotion, APoseTableReproducesTheRigidMotionItWasMadeFrom)
+{
+  const KneeModel model = bar_knee();
+  FlexionSettings settings = epicondylar({-38.0, 2.0, 22.0}, {42.0, 2.0, 22.0});
+  settings.anatomy.posterior = -Eigen::Vector3d::UnitY();
+  settings.anatomy.side = "left";
+  const JointCoordinateSystem jcs = resolve_knee_motion(model, settings).jcs;
+
+  // Known motions of the femur: turns about skew axes through points off the knee, and shifts.
+  std::vector<Eigen::Isometry3d> known;
+  known.push_back(Eigen::Isometry3d::Identity());
+  for (const auto& [angle_deg, axis, point, shift] :
+       {std::tuple{35.0, Eigen::Vector3d(1.0, 0.2, -0.1), Eigen::Vector3d(3, -4, 25),
+                   Eigen::Vector3d(0.5, -2.0, 1.0)},
+        std::tuple{80.0, Eigen::Vector3d(0.9, -0.3, 0.4), Eigen::Vector3d(-2, 6, 18),
+                   Eigen::Vector3d(-1.5, 4.0, -0.7)}}) {
+    const Eigen::AngleAxisd turn(angle_deg * M_PI / 180.0, axis.normalized());
+    known.push_back(Eigen::Translation3d(point + shift) * turn * Eigen::Translation3d(-point));
+  }
+  std::vector<JointPose> rows;
+  for (const Eigen::Isometry3d& pose : known)
+    rows.push_back(joint_pose(jcs, pose));
+  settings.motion.path = MotionSettings::Path::table;
+  settings.motion.table = pose_table("ligsim_known_motion.csv", rows, true);
+  const KneeMotion table = resolve_knee_motion(model, settings);
+  ASSERT_EQ(table.load_factors.size(), known.size());
+  for (std::size_t k = 0; k < known.size(); ++k)
+    EXPECT_LT((table.femur_path->pose(table.load_factors[k]).matrix() - known[k].matrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-9)
+        << "pose " << k;
+}
+
+TEST(KneeMotion, APureRotationTableGivesTheAxisSweepToRoundOff)
+{
+  ligsim::Progress::set_quiet(true);
+  const KneeModel model = bar_knee();
+  FlexionSettings settings = epicondylar({-38.0, 2.0, 22.0}, {42.0, 2.0, 22.0});
+  settings.anatomy.posterior = -Eigen::Vector3d::UnitY();
+  settings.anatomy.side = "left";
+  settings.angles_deg = {0.0, 20.0, 40.0};
+  const HyperelasticBody body(model.mesh, settings.material,
+                              prestretched_fibers(model, settings.in_situ_strain));
+  const auto sweep_of = [&](const FlexionSettings& s) {
+    const KneeMotion motion = resolve_knee_motion(model, s);
+    const SweepSteps steps = motion_steps(motion);
+    const SweepResult sweep =
+        run_flexion_sweep(body, knee_conditions(model, femur_rigid_motion(motion)), s,
+                          AngleCallback{}, nullptr, &steps);
+    EXPECT_TRUE(sweep.success) << sweep.failure;
+    return sweep;
+  };
+  settings.motion.path = MotionSettings::Path::pure;
+  const SweepResult axis = sweep_of(settings);
+  settings.motion.path = MotionSettings::Path::table;
+  settings.motion.table = pose_table("ligsim_pure_rotation.csv", {JointPose{}, {20.0}, {40.0}});
+  const SweepResult table = sweep_of(settings);
+  ASSERT_EQ(axis.angles.size(), 3u);
+  ASSERT_EQ(table.angles.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(table.angles[k].angle_deg, axis.angles[k].angle_deg);
+    const double force = axis.angles[k].femur_force_n.norm();
+    EXPECT_GT(force, 0.0);
+    EXPECT_LT((table.angles[k].femur_force_n - axis.angles[k].femur_force_n).norm(), 1e-9 * force);
+    EXPECT_NEAR(table.angles[k].strain_energy_mj, axis.angles[k].strain_energy_mj,
+                1e-9 * axis.angles[k].strain_energy_mj);
+  }
 }
