@@ -504,8 +504,7 @@ TEST_P(ConfigKeys, EveryAcceptedKeyIsDocumented)
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Readers, ConfigKeys,
-                         ::testing::Values("build", "flexion", "scene", "tear"),
+INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeys, ::testing::Values("build", "flexion", "scene", "tear"),
                          [](const auto& info) { return info.param; });
 
 } // namespace
