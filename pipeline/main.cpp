@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <string>
 
 int main(int argc, char** argv)
 {
@@ -32,6 +34,10 @@ int main(int argc, char** argv)
   ligsim::cli::add_flexion_command(app);
   ligsim::cli::add_export_command(app);
   ligsim::cli::add_study_command(app);
+  ligsim::cli::add_guide_footers(app);
+  if (const char* check_only = std::getenv("LIGSIM_CHECK_ONLY");
+      check_only != nullptr && std::string(check_only) == "1")
+    ligsim::cli::make_jobs_check_only(app);
 
   try {
     app.parse(argc, argv);

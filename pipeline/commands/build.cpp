@@ -41,7 +41,7 @@ void add_options(CLI::App* command, BuildOptions& o)
 {
   command
       ->add_option("--config", o.config,
-                   "TOML file with every parameter (see README); flags override it")
+                   "TOML file with every parameter (docs/build.md); flags override it")
       ->check(CLI::ExistingFile);
   command->add_option("--surface", o.surface,
                       "ligament surface: .stl, .obj, .ply, .vtp or .vtk (mm), or .glb/.gltf "

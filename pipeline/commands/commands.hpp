@@ -30,4 +30,12 @@ void add_flexion_command(CLI::App& app);
 /// `study`: convergence ladders, segmentation sensitivity, cohort tables.
 void add_study_command(CLI::App& app);
 
+/// After the commands above: `ligsim <job> --help` ends with the user guide's page for the job
+/// ("Guide: docs/flexion.md").
+void add_guide_footers(CLI::App& app);
+/// The documentation test's dry run (LIGSIM_CHECK_ONLY=1): every job only checks its command
+/// line and loads the config and scene files it names, with the job's own readers, and runs
+/// nothing.
+void make_jobs_check_only(CLI::App& app);
+
 } // namespace ligsim::cli

@@ -82,9 +82,9 @@ struct BuildConfig {
   FlexionDefaults flexion;
 };
 
-/// Reads a TOML config (format in README.md). Relative paths are relative to the file's folder.
-/// Throws InputError with the file, line and key on a syntax error, an unknown key or a value
-/// of the wrong type.
+/// Reads a TOML config (every key: docs/build.md). Relative paths are relative to the file's
+/// folder. Throws InputError with the file, line and key on a syntax error, an unknown key or a
+/// value of the wrong type.
 BuildConfig load_build_config(const std::filesystem::path& file);
 
 /// The parameters one stage depends on, as JSON (for summary.json and the cache key).

@@ -2,7 +2,7 @@
 /// @brief Everything a FEBio 4 input of a ligament between rigid bones holds, independent of
 /// where it came from: the ligament's tets and fibers, its material and in-situ strain, the
 /// bones as rigid bodies with their attachment nodes and their poses per step, contact, and the
-/// solver settings. `write_feb` turns it into a .feb file (README, "FEBio export").
+/// solver settings. `write_feb` turns it into a .feb file (docs/export.md).
 
 #include "common/mesh.hpp"
 #include "sim/material/material_parameters.hpp"

@@ -2,7 +2,7 @@
 /// @brief A FebProblem as a FEBio 4 input file (febio_spec 4.0): one time step per entry of
 /// step_labels, ending at times 1, 2, ... (must points), the bones' poses prescribed exactly at
 /// those times, the ligament's node positions, the rigid bodies' positions and reactions and
-/// the elements' strain energy density logged at each of them (README, "FEBio export").
+/// the elements' strain energy density logged at each of them (docs/export.md).
 
 #include "sim/febio/feb_problem.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @brief The knee flexion solved twice on the same settings, by ligsim and by FEBio, and the
-/// two answers side by side (`ligsim verify febio`; README, "FEBio export").
+/// two answers side by side (`ligsim verify febio`; docs/export.md).
 
 #include "sim/febio/febio_comparison.hpp"
 #include "sim/febio/febio_run.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// @brief The FEBio problem of a knee flexion sweep: the same model, material, in-situ strain,
-/// femur motion and contact as `ligsim flexion` on `settings` (README, "FEBio export").
+/// femur motion and contact as `ligsim flexion` on `settings` (docs/export.md).
 
 #include "sim/febio/feb_problem.hpp"
 #include "sim/flexion/flexion_settings.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-/// @brief The TOML file of a flexion sweep (every key in README.md, section "Knee flexion").
+/// @brief The TOML file of a flexion sweep (every key: docs/flexion.md).
 
 #include "sim/flexion/flexion_settings.hpp"
 

@@ -1,7 +1,6 @@
 #pragma once
 /// @brief What a knee flexion sweep does: the angles, the flexion axis, the material and
-/// in-situ strain, quasi-static or interactive, and which pictures to draw (README, section
-/// "Knee flexion").
+/// in-situ strain, quasi-static or interactive, and which pictures to draw (docs/flexion.md).
 
 #include "sim/contact/contact_config.hpp"
 #include "sim/material/material_parameters.hpp"

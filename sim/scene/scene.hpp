@@ -1,6 +1,6 @@
 #pragma once
 /// @brief A simulation scene: mesh, material, fibers, node sets, boundary conditions, loads,
-/// solver and outputs, read from a TOML file (format in README.md, section "Simulation").
+/// solver and outputs, read from a TOML file (every key: docs/simulate.md).
 
 #include "common/mesh.hpp"
 #include "sim/contact/contact_config.hpp"

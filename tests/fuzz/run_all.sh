@@ -5,7 +5,7 @@
 # out-of-memory and leak reproducers left in OUT/<target>/artifacts/).
 #
 # usage: tests/fuzz/run_all.sh BUILD_FUZZ_DIR OUT_DIR [SECONDS] [TARGET ...]
-#   BUILD_FUZZ_DIR  a build with -DLIGSIM_FUZZ=ON (see README.md, "Fuzzing")
+#   BUILD_FUZZ_DIR  a build with -DLIGSIM_FUZZ=ON (see docs/development.md, "Fuzzing")
 #   OUT_DIR         per target: the corpus it grew, its log and its artifacts; table.md
 #   TARGET          default: every fuzz_* target
 set -euo pipefail

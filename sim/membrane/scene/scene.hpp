@@ -1,7 +1,6 @@
 #pragma once
 /// @brief A tearing scene: mesh, material, fibers, criterion, solver, boundary conditions,
-/// loads, initial cuts and run limits, as read from a TOML file (format in the README,
-/// section "Membrane tearing").
+/// loads, initial cuts and run limits, as read from a TOML file (every key: docs/tear.md).
 
 #include "sim/membrane/crack/tearing.hpp"
 #include "sim/membrane/mesh/membrane_mesh.hpp"

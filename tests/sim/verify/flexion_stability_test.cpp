@@ -1,7 +1,7 @@
 // The flexion stability suite's small cases on a coarse build of the shipped MCL (the ctest
 // fixture flexion_stability_model makes it): each converges with the state in equilibrium or
 // stops with a diagnostic naming where, and no file gets a non-finite value. `ligsim verify
-// stability --suite flexion` runs the whole suite (README, "Stability").
+// stability --suite flexion` runs the whole suite (docs/validation.md, "Stability").
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
