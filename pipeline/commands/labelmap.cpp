@@ -106,6 +106,8 @@ void run_labelmap(const LabelmapOptions& o)
             [](const auto& a, const auto& b) { return a.value < b.value; });
   image.segment_names = names;
   const fs::path out = o.out;
+  if (!out.parent_path().empty())
+    fs::create_directories(out.parent_path());
   labelmap::write_label_image(image, out);
   // The names for every format (NRRD also carries them in its header, as Slicer's segments).
   const fs::path table = colour_table_of(out);

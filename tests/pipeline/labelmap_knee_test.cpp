@@ -43,8 +43,7 @@ std::vector<std::map<std::string, double>> read_table(const fs::path& file)
 
 TEST(LabelmapKnee, TheHraKneeFromItsLabelMapBuildsAndFlexesInsidePublishedRanges)
 {
-  const fs::path dir = fresh_folder("labelmap_knee");
-  fs::create_directories(dir);
+  const fs::path dir = fresh_folder("labelmap_knee"); // labelmap makes it
   const std::string knee = source_path("data/hra-knee/VH_F_Knee_L.glb").string();
   const std::string mcl = source_path("data/hra-knee/VH_F_Ligaments_Knee_L.glb").string() +
                           "#VH_F_left_tibial_collateral_ligament";
