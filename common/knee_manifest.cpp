@@ -18,7 +18,8 @@ nlohmann::json to_json(const KneeManifest& manifest)
                          {"failure_strain", l.failure_strain},
                          {"failure_load_n", l.failure_load_n},
                          {"material", l.material},
-                         {"defaults_source", l.defaults_source}});
+                         {"defaults_source", l.defaults_source},
+                         {"contact_bones", l.contact_bones}});
   return {{"ligaments", ligaments}, {"bones", manifest.bones}};
 }
 
@@ -39,6 +40,11 @@ KneeManifest knee_manifest_from_json(const nlohmann::json& json, const std::stri
       l.failure_load_n = entry.at("failure_load_n").get<double>();
       l.material = entry.at("material");
       l.defaults_source = entry.value("defaults_source", "");
+      l.contact_bones = entry.value("contact_bones", std::vector<std::string>{});
+      for (const std::string& bone : l.contact_bones)
+        if (!manifest.bones.count(bone))
+          fail("{}: ligament {} meets the {} by contact, which the knee does not list", where,
+               l.name, bone);
       if (l.name.empty() || l.folder.empty())
         fail("{}: a ligament without a name or a folder", where);
       if (l.distal_bone != "tibia" && l.distal_bone != "fibula")

@@ -24,7 +24,8 @@ struct KneeLigament {
   /// Weiss material, in a flexion config's [material] keys: mu_mpa, k_mpa, volumetric, c3_mpa,
   /// c4, c5_mpa, lambda_star, convention.
   nlohmann::json material = nlohmann::json::object();
-  std::string defaults_source; ///< where its material and failure figures come from
+  std::string defaults_source;            ///< where its material and failure figures come from
+  std::vector<std::string> contact_bones; ///< the bones it meets by contact (empty: every bone)
 };
 
 struct KneeManifest {

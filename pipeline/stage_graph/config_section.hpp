@@ -71,6 +71,17 @@ public:
         }
         return;
       }
+    } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+      if (const toml::array* array = node->as_array()) {
+        target.clear();
+        for (const toml::node& item : *array) {
+          const auto v = item.value<std::string>();
+          if (!v)
+            type_error(key, node, "a list of strings");
+          target.push_back(*v);
+        }
+        return;
+      }
     } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
       if (const toml::array* array = node->as_array(); array && array->size() == 3) {
         for (std::size_t i = 0; i < 3; ++i) {
@@ -136,6 +147,8 @@ private:
       return "a string";
     else if constexpr (std::is_same_v<T, std::vector<int>>)
       return "a list of integers";
+    else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+      return "a list of strings";
     else
       return "three numbers";
   }

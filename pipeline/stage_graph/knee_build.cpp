@@ -61,6 +61,7 @@ nlohmann::json to_json(const KneeConfig& knee)
     entry["failure_load_n"] = ligament.failure_load_n;
     entry["material"] = material_json(ligament.build.material);
     entry["defaults_source"] = ligament.defaults_source;
+    entry["contact_bones"] = ligament.contact_bones;
     ligaments[ligament.name] = entry;
   }
   return {{"femur", knee.femur.string()},
@@ -97,6 +98,7 @@ void build_knee(const KneeConfig& knee, const fs::path& dir, const std::string& 
     entry.failure_load_n = ligament.failure_load_n;
     entry.material = material_json(ligament.build.material);
     entry.defaults_source = ligament.defaults_source;
+    entry.contact_bones = ligament.contact_bones;
     manifest.ligaments.push_back(entry);
   }
   if (target != "model")

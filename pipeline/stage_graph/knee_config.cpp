@@ -47,6 +47,12 @@ LigamentConfig read_ligament(const toml::table& table, std::size_t index, const 
   }
   entry.read("failure_strain", ligament.failure_strain);
   entry.read("failure_load_n", ligament.failure_load_n);
+  entry.read("contact_bones", ligament.contact_bones);
+  for (const std::string& bone : ligament.contact_bones)
+    if (bone != "femur" && bone != "tibia" && bone != "fibula")
+      fail("{}:{}: ligament {}: contact_bones lists \"{}\"; the knee's bones are femur, tibia "
+           "and fibula",
+           file.string(), table.source().begin.line, ligament.name, bone);
   for (const char* name : {"input", "attachments", "material"})
     entry.allow(name);
   for (const std::string& name : stage_section_names())

@@ -18,7 +18,9 @@ struct LigamentConfig {
   double failure_strain = 0.171; ///< fiber strain (stretch - 1)
   double failure_load_n = 799.0; ///< N
   std::string defaults_source;   ///< where its material and failure defaults come from
-  BuildConfig build;             ///< its stages; build.tibia is its distal bone's surface
+  /// The bones it meets by contact in a flexion (empty: every bone of the knee).
+  std::vector<std::string> contact_bones;
+  BuildConfig build; ///< its stages; build.tibia is its distal bone's surface
 };
 
 struct KneeConfig {
