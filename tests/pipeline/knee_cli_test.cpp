@@ -228,6 +228,22 @@ TEST(KneeCli, EachLigamentAloneGivesItsAnswerInTheKnee)
   }
 }
 
+TEST(KneeCli, InteractiveKneeReportsOneFrameRateForAllItsLigaments)
+{
+  const fs::path out = fresh_folder("knee_flexion_interactive");
+  const CliResult result = flex(out, "--mode interactive --speed 90 --no-images");
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  // Each ligament's frames take their turn: the knee's rate is below each ligament's own.
+  const double knee = summary["results"]["frames_per_second"].get<double>();
+  EXPECT_GT(knee, 0.0);
+  for (const char* name : {"A", "B", "C"}) {
+    const nlohmann::json& ligament = summary["results"]["ligaments"][name];
+    EXPECT_EQ(ligament["angles"].size(), 3u) << name;
+    EXPECT_GT(ligament["frames_per_second"].get<double>(), knee) << name;
+  }
+}
+
 TEST(KneeCli, PicturesShowTheWholeKneeFromTheFrontAndTheSide)
 {
   const fs::path out = fresh_folder("knee_flexion_pictures");
