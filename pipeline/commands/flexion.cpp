@@ -194,38 +194,6 @@ void print_table(const std::vector<sim::LigamentSweep>& sweeps,
     }());
 }
 
-/// Per angle every ligament reached: how close each pair comes (pairs.csv), a warning where two
-/// interpenetrate.
-nlohmann::json measure_pairs(const std::vector<sim::LigamentModel>& ligaments,
-                             const std::map<double, std::vector<Eigen::VectorXd>>& states,
-                             const fs::path& out)
-{
-  nlohmann::json json = nlohmann::json::array();
-  std::string csv = "angle_deg,first,second,closest_mm,nodes_inside,deepest_mm\n";
-  for (const auto& [angle, x] : states) {
-    if (std::any_of(x.begin(), x.end(), [](const Eigen::VectorXd& v) { return v.size() == 0; }))
-      continue;
-    std::vector<sim::LigamentState> at_angle;
-    for (std::size_t l = 0; l < ligaments.size(); ++l)
-      at_angle.push_back({ligaments[l].name, &ligaments[l].model.mesh, &x[l]});
-    for (const sim::LigamentPair& pair : sim::measure_pairs(at_angle)) {
-      nlohmann::json entry = to_json(pair);
-      entry["angle_deg"] = angle;
-      json.push_back(entry);
-      csv += fmt::format("{:g},{},{},{:.6g},{},{:.6g}\n", angle, pair.first, pair.second,
-                         pair.closest_mm, pair.nodes_inside, pair.deepest_mm);
-      if (pair.nodes_inside > 0)
-        log_info(fmt::format("warning at {} deg: the {} and the {} interpenetrate ({} surface "
-                             "nodes of one inside the other, up to {:.2f} mm deep; the "
-                             "ligaments do not touch each other in the solve)",
-                             sim::angle_label(angle), pair.first, pair.second, pair.nodes_inside,
-                             pair.deepest_mm));
-    }
-  }
-  write_text_atomically(out / "pairs.csv", csv);
-  return json;
-}
-
 void run_flexion(const FlexionJobOptions& options)
 {
   RunSummary summary("flexion");
@@ -313,7 +281,7 @@ void run_flexion(const FlexionJobOptions& options)
   for (const sim::LigamentSweep& sweep : sweeps)
     results["ligaments"][sweep.name] = ligament_results(sweep);
   if (ligaments.size() > 1)
-    results["pairs"] = measure_pairs(ligaments, states, options.out);
+    results["pairs"] = sim::pairs_over_sweep(ligaments, states, options.out);
   else // a one-ligament model: its results at the top, as before knees
     results.update(results["ligaments"][sweeps.front().name]);
   results["success"] = success;

@@ -1,8 +1,12 @@
 #include "sim/flexion/ligament_pairs.hpp"
 
+#include "common/atomic_file.hpp"
+#include "common/progress.hpp"
 #include "sim/contact/contact_surface.hpp"
 #include "sim/contact/winding_number.hpp"
+#include "sim/flexion/flexion_output.hpp"
 
+#include <fmt/format.h>
 #include <vtkCellArray.h>
 #include <vtkImplicitPolyDataDistance.h>
 #include <vtkPoints.h>
@@ -99,6 +103,37 @@ nlohmann::json to_json(const LigamentPair& pair)
           {"closest_mm", pair.closest_mm},
           {"nodes_inside", pair.nodes_inside},
           {"deepest_mm", pair.deepest_mm}};
+}
+
+nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
+                                const std::map<double, std::vector<Eigen::VectorXd>>& states,
+                                const std::filesystem::path& out)
+{
+  nlohmann::json json = nlohmann::json::array();
+  std::string csv = "angle_deg,first,second,closest_mm,nodes_inside,deepest_mm\n";
+  for (const auto& [angle, x] : states) {
+    if (x.size() != ligaments.size() ||
+        std::any_of(x.begin(), x.end(), [](const Eigen::VectorXd& v) { return v.size() == 0; }))
+      continue;
+    std::vector<LigamentState> at_angle;
+    for (std::size_t l = 0; l < ligaments.size(); ++l)
+      at_angle.push_back({ligaments[l].name, &ligaments[l].model.mesh, &x[l]});
+    for (const LigamentPair& pair : measure_pairs(at_angle)) {
+      nlohmann::json entry = to_json(pair);
+      entry["angle_deg"] = angle;
+      json.push_back(entry);
+      csv += fmt::format("{:g},{},{},{:.6g},{},{:.6g}\n", angle, pair.first, pair.second,
+                         pair.closest_mm, pair.nodes_inside, pair.deepest_mm);
+      if (pair.nodes_inside > 0)
+        log_info(fmt::format("warning at {} deg: the {} and the {} interpenetrate ({} surface "
+                             "nodes of one inside the other, up to {:.2f} mm deep; the "
+                             "ligaments do not touch each other in the solve)",
+                             angle_label(angle), pair.first, pair.second, pair.nodes_inside,
+                             pair.deepest_mm));
+    }
+  }
+  write_text_atomically(out / "pairs.csv", csv);
+  return json;
 }
 
 } // namespace ligsim::sim

@@ -6,11 +6,14 @@
 /// not seen.
 
 #include "common/mesh.hpp"
+#include "sim/flexion/knee_model.hpp"
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,5 +37,12 @@ struct LigamentState {
 std::vector<LigamentPair> measure_pairs(const std::vector<LigamentState>& ligaments);
 
 nlohmann::json to_json(const LigamentPair& pair);
+
+/// Per angle that every ligament reached (`states`: per angle, per ligament of `ligaments`, the
+/// positions; an empty vector where one did not reach it): every pair, into `<out>/pairs.csv`
+/// and the returned JSON, with a warning on stderr where two interpenetrate.
+nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
+                                const std::map<double, std::vector<Eigen::VectorXd>>& states,
+                                const std::filesystem::path& out);
 
 } // namespace ligsim::sim
