@@ -108,8 +108,22 @@ vtkPolyData* bone_of(const KneeModel& model, const std::string& name)
 std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& single_name)
 {
   const std::optional<KneeManifest> manifest = read_knee_manifest(dir);
-  if (!manifest)
+  if (!manifest) {
+    // One ligament's folder of a knee: that ligament of the knee, with the knee's bones.
+    const fs::path folder = fs::absolute(dir).lexically_normal();
+    const fs::path knee =
+        folder.has_filename() ? folder.parent_path() : folder.parent_path().parent_path();
+    const std::string name = (folder.has_filename() ? folder : folder.parent_path()).filename();
+    if (const auto parent = read_knee_manifest(knee))
+      for (const KneeLigament& entry : parent->ligaments)
+        if (entry.folder == name) {
+          std::vector<LigamentModel> all = load_knee(knee, single_name);
+          for (LigamentModel& ligament : all)
+            if (ligament.name == entry.name)
+              return {std::move(ligament)};
+        }
     return {{single_name, load_knee_model(dir), dir, std::nullopt}};
+  }
   std::map<std::string, vtkSmartPointer<vtkPolyData>> bones;
   for (const auto& [name, file] : manifest->bones)
     bones[name] = bone_surface(dir, file, name);

@@ -46,8 +46,9 @@ struct LigamentModel {
 };
 
 /// A model folder's ligaments: those knee.json lists (each loaded from its folder, with the
-/// knee's bones, anatomy.json and, for the ones bound to it, the fibula), or the folder's one
-/// ligament called `single_name`. Throws InputError as load_knee_model does, or naming knee.json
+/// knee's bones, anatomy.json and, for the ones bound to it, the fibula); for one ligament's
+/// folder of a knee, that ligament as the knee has it; else the folder's one ligament called
+/// `single_name`. Throws InputError as load_knee_model does, or naming knee.json
 /// and the file it lacks.
 std::vector<LigamentModel> load_knee(const std::filesystem::path& dir,
                                      const std::string& single_name);

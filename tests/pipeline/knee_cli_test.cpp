@@ -123,9 +123,9 @@ std::map<std::string, std::string> statuses(const fs::path& dir)
 
 /// The flexion of the knee at 0, 15 and 30 degrees about an axis along x, 5 mm behind the
 /// femoral ends: every ligament turns the same way in its own plane.
-CliResult flex(const fs::path& out, const std::string& more)
+CliResult flex(const fs::path& out, const std::string& more, const fs::path& model = knee_model())
 {
-  return run_ligsim("flexion --model " + knee_model().string() +
+  return run_ligsim("flexion --model " + model.string() +
                     " --axis 0,-5,16,1,-5,16 --angles 0,15,30 --out " + out.string() + " " + more);
 }
 
@@ -223,6 +223,18 @@ TEST(KneeCli, EachLigamentAloneGivesItsAnswerInTheKnee)
         EXPECT_NEAR(mine[a][figure].get<double>(), expected, 1e-12 * (1.0 + std::abs(expected)))
             << name << " " << figure << " at angle " << a;
       }
+    // One ligament's folder of the knee is that ligament of the knee (its material, its bones).
+    if (std::string(name) == "C") {
+      const fs::path folder = fresh_folder("knee_flexion_folder_C");
+      const CliResult own_folder = flex(folder, "--no-images", knee_model() / name);
+      ASSERT_EQ(own_folder.exit_code, 0) << own_folder.stderr_text;
+      nlohmann::json via_folder = read_json(folder / "summary.json")["results"]["ligaments"][name];
+      nlohmann::json expected = mine;
+      for (nlohmann::json* angles : {&via_folder["angles"], &expected})
+        for (nlohmann::json& angle : *angles)
+          angle.erase("wall_s");
+      EXPECT_EQ(via_folder["angles"], expected);
+    }
     // The ligament is loaded: the comparison is not one of zeros.
     EXPECT_GT(knees[2]["strain_energy_mj"].get<double>(), 1e-3) << name;
   }
