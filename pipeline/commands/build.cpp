@@ -5,6 +5,7 @@
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/knee_build.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
@@ -149,23 +150,10 @@ void apply_rule_flags(attachments::Rule& rule, const std::string& kind,
   set_if(o.end_length, rule.end_length_mm);
 }
 
-BuildConfig resolve_config(const BuildOptions& o)
+/// The stage flags over one ligament's config.
+void apply_stage_flags(const BuildOptions& o, BuildConfig& config)
 {
-  BuildConfig config = o.config.empty() ? BuildConfig{} : pipeline::load_build_config(o.config);
-  if (!o.surface.empty())
-    config.surface = o.surface;
-  if (!o.femur.empty())
-    config.femur = o.femur;
-  if (!o.tibia.empty())
-    config.tibia = o.tibia;
   config.strict = config.strict || o.strict;
-  if (!o.labels.empty())
-    config.labels = o.labels;
-  if (!o.colour_table.empty())
-    config.colour_table = o.colour_table;
-  set_if(o.ligament_label, config.ligament_label);
-  set_if(o.femur_label, config.femur_label);
-  set_if(o.tibia_label, config.tibia_label);
   apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
                    o.femur_end, o);
   apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
@@ -181,11 +169,77 @@ BuildConfig resolve_config(const BuildOptions& o)
   set_if(o.facet_distance, config.tetmesh.facet_distance_mm);
   set_if(o.radius_edge, config.tetmesh.radius_edge_ratio);
   set_if(o.in_situ, config.model.in_situ_strain);
+}
+
+BuildConfig resolve_config(const BuildOptions& o)
+{
+  BuildConfig config = o.config.empty() ? BuildConfig{} : pipeline::load_build_config(o.config);
+  if (!o.surface.empty())
+    config.surface = o.surface;
+  if (!o.femur.empty())
+    config.femur = o.femur;
+  if (!o.tibia.empty())
+    config.tibia = o.tibia;
+  if (!o.labels.empty())
+    config.labels = o.labels;
+  if (!o.colour_table.empty())
+    config.colour_table = o.colour_table;
+  set_if(o.ligament_label, config.ligament_label);
+  set_if(o.femur_label, config.femur_label);
+  set_if(o.tibia_label, config.tibia_label);
+  apply_stage_flags(o, config);
   return config;
+}
+
+/// A knee config: every ligament built in its own folder of `o.out`, the flags over each.
+void run_knee_build_job(const BuildOptions& o, const std::string& target)
+{
+  for (const auto& [flag, value] :
+       {std::pair{"--surface", o.surface}, std::pair{"--femur", o.femur},
+        std::pair{"--tibia", o.tibia}, std::pair{"--labels", o.labels},
+        std::pair{"--ligament-label", o.ligament_label}})
+    if (!value.empty())
+      fail("{} describes a knee: its surfaces come from the config, not from {}", o.config, flag);
+  pipeline::KneeConfig knee = pipeline::load_knee_config(o.config);
+  // Every input is read before a stage runs, so that bad input leaves nothing behind.
+  nlohmann::json repairs = nlohmann::json::object();
+  for (pipeline::LigamentConfig& ligament : knee.ligaments) {
+    apply_stage_flags(o, ligament.build);
+    repair::Report report;
+    pipeline::load_ligament(ligament.build, nullptr, &report);
+    for (const std::string& line : repair::describe(report))
+      log_info(fmt::format("{} surface repair: {}", ligament.name, line));
+    repairs[ligament.name] = repair::to_json(report);
+  }
+  nlohmann::json bone_repair = nlohmann::json::object();
+  for (const auto& [bone, file] : {std::pair{"femur", knee.femur}, std::pair{"tibia", knee.tibia},
+                                   std::pair{"fibula", knee.fibula}}) {
+    if (file.empty())
+      continue;
+    repair::Report report;
+    pipeline::load_bone(file, &report);
+    for (const std::string& line : repair::describe(report))
+      log_info(fmt::format("{} repair: {}", bone, line));
+    bone_repair[bone] = repair::to_json(report);
+  }
+
+  const fs::path out = o.out;
+  RunSummary summary(target == "model" ? "build" : target);
+  summary.inputs() = {{"config", o.config}, {"knee", true}};
+  summary.parameters() = pipeline::to_json(knee);
+  summary.results()["surface_repair"] = repairs;
+  summary.results()["bone_repair"] = bone_repair;
+  pipeline::build_knee(knee, out, target, o.force, summary);
+  summary.write(out);
+  log_info(fmt::format("wrote {}", (out / "summary.json").string()));
 }
 
 void run_build_job(const BuildOptions& o, const std::string& target)
 {
+  if (!o.config.empty() && pipeline::is_knee_config(o.config)) {
+    run_knee_build_job(o, target);
+    return;
+  }
   const fs::path out = o.out;
   const bool existed = fs::exists(out);
   // On failure, a folder this run created is left as it was: absent.

@@ -9,13 +9,18 @@
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/flexion_pictures.hpp"
 #include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/knee_pictures.hpp"
+#include "sim/flexion/knee_sweep.hpp"
+#include "sim/flexion/ligament_pairs.hpp"
 #include "sim/flexion/plausibility.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,8 +71,8 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
   if (contact.enabled.value_or(true))
     parameters["contact"] = {
         {"model", "IPC barrier on the ligament's free surface nodes, frictionless"},
-        {"bones",
-         contact.bones.empty() ? std::vector<std::string>{"femur", "tibia"} : contact.bones},
+        {"bones", contact.bones.empty() ? std::vector<std::string>{"every bone of the model"}
+                                        : contact.bones},
         {"d_hat_mm", contact.barrier.d_hat_mm},
         {"stiffness_mpa_per_mm", contact.barrier.stiffness_mpa_per_mm},
         {"voxel_mm", contact.grid.voxel_mm},
@@ -124,6 +129,71 @@ void log_motion(const sim::KneeMotion& motion)
                        motion.figures["side"].get<std::string>()));
 }
 
+/// One ligament's results for summary.json.
+nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
+{
+  const sim::SweepResult& result = sweep.result;
+  nlohmann::json entries = nlohmann::json::array();
+  for (const sim::AngleResult& angle : result.angles)
+    entries.push_back(sim::angle_json(angle));
+  const sim::LigamentSettings& ligament = sweep.settings.ligament;
+  const sim::MaterialParameters& m = sweep.settings.material;
+  nlohmann::json json = {{"angles", entries},
+                         {"setup", sweep.setup},
+                         {"unrelaxed_prestretch_energy_mj", result.unrelaxed_energy_mj},
+                         {"initial_overlap", result.overlap.to_json()},
+                         {"footprints", sim::footprints_json(sweep.footprints, ligament.name)},
+                         {"plausibility",
+                          {{"ligament", ligament.name},
+                           {"failure_strain", ligament.failure_strain},
+                           {"failure_load_n", ligament.failure_load_n},
+                           {"warnings", sweep.warnings}}},
+                         {"material",
+                          {{"mu_mpa", m.mu_mpa},
+                           {"k_mpa", m.bulk_modulus_mpa},
+                           {"volumetric", to_string(m.volumetric)},
+                           {"c3_mpa", m.fiber->c3_mpa},
+                           {"c4", m.fiber->c4},
+                           {"c5_mpa", m.fiber->c5_mpa},
+                           {"lambda_star", m.fiber->lambda_star},
+                           {"convention", to_string(m.fiber->convention)}}},
+                         {"in_situ_strain", sweep.settings.in_situ_strain},
+                         {"success", result.success}};
+  if (sweep.settings.mode == sim::FlexionMode::interactive)
+    json["frames_per_second"] = result.frames_per_second;
+  if (!result.success)
+    json["failure"] = result.failure;
+  return json;
+}
+
+/// The table on stdout: a row per ligament and angle.
+void print_table(const std::vector<sim::LigamentSweep>& sweeps,
+                 const std::vector<sim::LigamentModel>& ligaments)
+{
+  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>9} {:>4}\n", "ligament",
+             "angle", "femur_N", "distal_N", "contact_N", "energy_mJ", "mean_%", "max_%", "dL_mm",
+             "dL_%", "conv");
+  for (std::size_t l = 0; l < sweeps.size(); ++l)
+    for (const sim::AngleResult& a : sweeps[l].result.angles) {
+      double contact = 0.0;
+      for (const sim::BoneContact& bone : a.contact)
+        contact += bone.in_solve ? bone.force_n.norm() : 0.0;
+      fmt::print("{:<8} {:>6} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} {:>8.2f} {:>8.2f} "
+                 "{:>9.2f} {:>4}\n",
+                 sweeps[l].name, sim::angle_label(a.angle_deg), a.femur_force_n.norm(),
+                 a.tibia_force_n.norm(), contact, a.strain_energy_mj,
+                 100.0 * (a.mean_fiber_stretch - 1.0), 100.0 * (a.max_fiber_stretch - 1.0),
+                 a.length_change_mm, a.length_change_pct, a.converged ? "yes" : "no");
+    }
+  if (ligaments.size() > 1)
+    fmt::print("(distal_N: the force on the bone of the distal footprint: {})\n", [&] {
+      std::string text;
+      for (const sim::LigamentModel& l : ligaments)
+        text += (text.empty() ? "" : ", ") + l.name + " " + l.model.distal_bone;
+      return text;
+    }());
+}
+
 void run_flexion(const FlexionJobOptions& options)
 {
   RunSummary summary("flexion");
@@ -134,91 +204,106 @@ void run_flexion(const FlexionJobOptions& options)
   summary.inputs()["model"] = settings.model_dir.string();
   if (!options.flexion.config.empty())
     summary.inputs()["config"] = options.flexion.config.string();
-  const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
-  const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
+  const std::vector<sim::LigamentModel> ligaments =
+      sim::chosen_ligaments(sim::load_knee(settings.model_dir, settings.ligament.name), settings);
+  const bool knee = ligaments.front().manifest.has_value();
+  std::vector<std::string> names;
+  for (const sim::LigamentModel& ligament : ligaments)
+    names.push_back(ligament.name);
+  // The ligaments share the bones and the anatomy: the motion comes from any of them.
+  const sim::KneeModel& bones = ligaments.front().model;
+  const sim::KneeMotion motion = sim::resolve_knee_motion(bones, settings);
   record_parameters(settings, motion, summary);
+  summary.parameters()["ligaments"] = names;
   log_motion(motion);
-  const sim::HyperelasticBody body(model.mesh, settings.material,
-                                   sim::prestretched_fibers(model, settings.in_situ_strain));
   const sim::RigidMotion femur_motion = sim::femur_rigid_motion(motion);
-  const sim::BoundaryConditions conditions = sim::knee_conditions(model, femur_motion);
-  const sim::SweepSteps steps = sim::motion_steps(motion);
-  std::optional<sim::EmbeddedPolyline> centerline;
-  if (model.centerline.rows() >= 2)
-    centerline.emplace(model.mesh, model.centerline);
-  sim::PlausibilityContext plausibility{settings.ligament, sim::footprints(model, motion.axis.axis),
-                                        settings.in_situ_strain, 0.0};
-  log_footprints(plausibility.footprints, settings.ligament.name);
-  // Built with contact off as well: it measures how deep the ligament goes into the bones.
-  const sim::KneeContact contact(model, conditions, settings.contact,
-                                 settings.model_dir / "contact");
+  for (const sim::LigamentModel& ligament : ligaments)
+    log_footprints(sim::footprints(ligament.model, motion.axis.axis), ligament.name);
   // Before anything is written: a display for the pictures, or the reason there is none.
   std::optional<sim::OffscreenDisplay> display;
   if (settings.images)
     display.emplace();
-  summary.add_stage("setup", setup_meter,
-                    {{"nodes", body.node_count()},
-                     {"tets", body.element_count()},
-                     {"femur_nodes", model.femur_nodes.size()},
-                     {"tibia_nodes", model.tibia_nodes.size()},
-                     {"rest_volume_mm3", body.rest_volume()},
-                     {"contact", contact.figures()}});
+  summary.add_stage("setup", setup_meter, {{"ligaments", names}});
 
   ensure_directory(options.out);
-  sim::FlexionOutput output(body, model, femur_motion, options.out);
-  sim::FlexionPictures pictures(model, output, motion.axis.axis, settings.image_angles_deg,
-                                options.out);
+  std::vector<sim::OutputLigament> parts;
+  for (const sim::LigamentModel& ligament : ligaments)
+    parts.push_back({ligament.name, knee ? ligament.name : "", ligament.model.distal_bone});
+  sim::FlexionOutput output(parts, bones, femur_motion, options.out);
+  // A one-ligament model keeps its own pictures (coloured by strain energy, with fibers).
+  std::optional<sim::FlexionPictures> ligament_pictures;
+  if (!knee)
+    ligament_pictures.emplace(bones, output, motion.axis.axis, settings.image_angles_deg,
+                              options.out);
+  sim::KneePictures knee_pictures(bones, output, sim::effective_anatomy(bones, settings),
+                                  motion.axis.axis, names, settings.image_angles_deg, options.out);
+  std::map<double, std::vector<Eigen::VectorXd>> states; // per angle, per ligament
   StageMeter sweep_meter;
-  nlohmann::json warnings = nlohmann::json::array();
-  const sim::SweepResult sweep = sim::run_flexion_sweep(
-      body, conditions, settings,
-      [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
-        for (const std::string& warning : sim::plausibility_warnings(angle, plausibility)) {
-          log_info(
-              fmt::format("warning at {} deg: {}", sim::angle_label(angle.angle_deg), warning));
-          warnings.push_back({{"angle_deg", angle.angle_deg}, {"warning", warning}});
-        }
-        const auto ligament = output.write_angle(angle, x);
-        if (settings.images)
-          pictures.keep(angle, x, ligament);
-      },
-      &contact, &steps, centerline ? &*centerline : nullptr);
-  output.finish(sweep.angles);
-  nlohmann::json sweep_figures = {{"success", sweep.success},
-                                  {"angles_reached", sweep.angles.size()}};
-  if (settings.mode == sim::FlexionMode::interactive)
-    sweep_figures.update({{"frames", sweep.frames},
-                          {"time_step_s", sweep.time_step_s},
-                          {"frames_per_second", sweep.frames_per_second}});
+  const std::vector<sim::LigamentSweep> sweeps =
+      sim::run_knee_sweep(ligaments, motion, settings, settings.model_dir / "contact",
+                          [&](std::size_t l, const sim::HyperelasticBody& body,
+                              const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+                            const auto grid = output.write_angle(l, body, angle, x);
+                            if (settings.images) {
+                              knee_pictures.keep(l, angle, grid);
+                              if (ligament_pictures)
+                                ligament_pictures->keep(angle, x, grid);
+                            }
+                            if (ligaments.size() > 1) {
+                              states[angle.angle_deg].resize(ligaments.size());
+                              states[angle.angle_deg][l] = x;
+                            }
+                          });
+  std::vector<std::vector<sim::AngleResult>> angles;
+  bool success = true;
+  std::string failure;
+  for (const sim::LigamentSweep& sweep : sweeps) {
+    angles.push_back(sweep.result.angles);
+    if (!sweep.result.success) {
+      success = false;
+      failure += (failure.empty() ? "" : "; ") +
+                 (knee ? sweep.name + ": " + sweep.result.failure : sweep.result.failure);
+    }
+  }
+  output.finish(angles);
+  nlohmann::json sweep_figures = {{"success", success}};
+  if (settings.mode == sim::FlexionMode::interactive) {
+    const sim::SweepResult& first = sweeps.front().result;
+    sweep_figures.update({{"frames", first.frames},
+                          {"time_step_s", first.time_step_s},
+                          {"frames_per_second", sim::knee_frames_per_second(sweeps)}});
+  }
+  if (sweeps.size() == 1)
+    sweep_figures["angles_reached"] = sweeps.front().result.angles.size();
   summary.add_stage("sweep", sweep_meter, sweep_figures);
 
   nlohmann::json& results = summary.results();
-  nlohmann::json entries = nlohmann::json::array();
-  for (const sim::AngleResult& angle : sweep.angles)
-    entries.push_back(sim::angle_json(angle));
-  results["angles"] = entries;
-  results["unrelaxed_prestretch_energy_mj"] = sweep.unrelaxed_energy_mj;
-  results["initial_overlap"] = sweep.overlap.to_json();
-  results["footprints"] = sim::footprints_json(plausibility.footprints, settings.ligament.name);
-  results["plausibility"] = {{"ligament", settings.ligament.name},
-                             {"failure_strain", settings.ligament.failure_strain},
-                             {"failure_load_n", settings.ligament.failure_load_n},
-                             {"warnings", warnings}};
-  results["success"] = sweep.success;
+  for (const sim::LigamentSweep& sweep : sweeps)
+    results["ligaments"][sweep.name] = ligament_results(sweep);
+  if (ligaments.size() > 1)
+    results["pairs"] = sim::pairs_over_sweep(ligaments, states, options.out);
+  else // a one-ligament model: its results at the top, as before knees
+    results.update(results["ligaments"][sweeps.front().name]);
+  results["success"] = success;
   if (settings.mode == sim::FlexionMode::interactive)
-    results["frames_per_second"] = sweep.frames_per_second;
-  if (!sweep.success)
-    results["failure"] = sweep.failure;
+    results["frames_per_second"] = sim::knee_frames_per_second(sweeps);
+  if (!success)
+    results["failure"] = failure;
 
   std::vector<fs::path> images;
   if (settings.images) {
     StageMeter picture_meter;
-    images = pictures.render(sweep.angles);
+    images = knee_pictures.render();
+    if (ligament_pictures) {
+      const std::vector<fs::path> own = ligament_pictures->render(sweeps.front().result.angles);
+      images.insert(images.end(), own.begin(), own.end());
+    }
     summary.add_stage("pictures", picture_meter, {{"files", images.size()}});
   }
   summary.write(options.out);
-  if (!sweep.success)
-    fail<SolverError>("{} (the angles reached are in {})", sweep.failure, options.out.string());
+  print_table(sweeps, ligaments);
+  if (!success)
+    fail<SolverError>("{} (the angles reached are in {})", failure, options.out.string());
 
   log_info(fmt::format("table: {}", (options.out / "flexion.csv").string()));
   for (const fs::path& image : images)

@@ -26,7 +26,12 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
       ->expected(3)
       ->excludes(axis);
   command.add_option("--in-situ-strain", options.in_situ_strain,
-                     "fiber pre-strain of the built pose (default 0.029)");
+                     "fiber pre-strain of the built pose (default 0.029; a knee model: each "
+                     "ligament's own, this sets them all)");
+  command
+      .add_option("--ligaments", options.ligaments,
+                  "a knee model: the ligaments to sweep, by name (default: all)")
+      ->delimiter(',');
   command
       .add_option("--contact", options.contact,
                   "ligament-bone contact: on (default) or off (the ligament may cross the bones)")
@@ -66,8 +71,12 @@ sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const 
     settings.axis.source = sim::AxisSettings::Source::condyles;
     settings.axis.posterior = Eigen::Vector3d(options.posterior.data());
   }
-  if (options.in_situ_strain)
+  if (options.in_situ_strain) {
     settings.in_situ_strain = *options.in_situ_strain;
+    settings.given.insert("in_situ_strain");
+  }
+  if (!options.ligaments.empty())
+    settings.ligaments = options.ligaments;
   if (options.speed)
     settings.interactive.angular_speed_deg_s = *options.speed;
   if (options.time_step)

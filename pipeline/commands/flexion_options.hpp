@@ -25,7 +25,8 @@ struct FlexionOptions {
   std::optional<double> in_situ_strain;
   std::optional<double> speed;
   std::optional<double> time_step;
-  std::string contact; ///< "on", "off" or "" (the config's, by default on)
+  std::string contact;                ///< "on", "off" or "" (the config's, by default on)
+  std::vector<std::string> ligaments; ///< a knee model's ligaments to sweep (empty: all)
 };
 
 /// Adds --config, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to

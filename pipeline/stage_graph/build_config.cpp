@@ -1,205 +1,117 @@
 #include "pipeline/stage_graph/build_config.hpp"
 
 #include "common/error.hpp"
-#include "common/toml_numbers.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
-
-#include <toml++/toml.h>
-
-#include <set>
+#include "pipeline/stage_graph/config_section.hpp"
 
 namespace ligsim::pipeline {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace config_reading {
 
-/// Reads typed values from one TOML table, remembering which keys were used, so that unknown
-/// keys (typos) can be reported.
-class Section {
-public:
-  Section(const toml::table* table, std::string name, fs::path file)
-      : m_table(table)
-      , m_name(std::move(name))
-      , m_file(std::move(file))
-  {
-  }
-
-  template <class T> void read(const std::string& key, T& target)
-  {
-    m_known.insert(key);
-    if (m_table == nullptr)
-      return;
-    const toml::node* node = m_table->get(key);
-    if (node == nullptr)
-      return;
-    if constexpr (std::is_same_v<T, double>) {
-      if (auto v = toml_number(*node)) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, int>) {
-      if (auto v = toml_int(*node)) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, bool>) {
-      if (auto v = node->value<bool>()) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      if (auto v = node->value<std::string>()) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, std::vector<int>>) {
-      if (const toml::array* array = node->as_array()) {
-        target.clear();
-        for (const toml::node& item : *array) {
-          const auto v = toml_int(item);
-          if (!v)
-            type_error(key, node, "a list of integers");
-          target.push_back(*v);
-        }
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      if (const toml::array* array = node->as_array(); array && array->size() == 3) {
-        for (std::size_t i = 0; i < 3; ++i) {
-          const auto v = toml_number(*array->get(i));
-          if (!v)
-            type_error(key, node, "three numbers");
-          target[static_cast<Eigen::Index>(i)] = *v;
-        }
-        return;
-      }
-    }
-    type_error(key, node, expected_name<T>());
-  }
-
-  /// A label: a number or a name, kept as text (as on the command line).
-  void read_label(const std::string& key, std::string& target)
-  {
-    m_known.insert(key);
-    const toml::node* node = m_table ? m_table->get(key) : nullptr;
-    if (node == nullptr)
-      return;
-    if (auto number = node->value<int64_t>())
-      target = std::to_string(*number);
-    else if (auto name = node->value<std::string>())
-      target = *name;
-    else
-      type_error(key, node, "a label number or name");
-  }
-
-  void read_path(const std::string& key, fs::path& target)
-  {
-    std::string text;
-    read(key, text);
-    if (!text.empty())
-      target = fs::path(text).is_absolute() ? fs::path(text) : m_file.parent_path() / text;
-  }
-
-  /// Marks a sub-table name as known.
-  void allow(const std::string& key) { m_known.insert(key); }
-
-  bool has(const std::string& key) const { return m_table && m_table->contains(key); }
-
-  void reject_unknown() const
-  {
-    if (m_table == nullptr)
-      return;
-    for (const auto& [key, node] : *m_table)
-      if (!m_known.count(std::string(key.str())))
-        fail("{}:{}: unknown key '{}' in [{}]", m_file.string(), node.source().begin.line,
-             key.str(), m_name);
-  }
-
-private:
-  template <class T> static const char* expected_name()
-  {
-    if constexpr (std::is_same_v<T, double>)
-      return "a number";
-    else if constexpr (std::is_same_v<T, int>)
-      return "an integer";
-    else if constexpr (std::is_same_v<T, bool>)
-      return "true or false";
-    else if constexpr (std::is_same_v<T, std::string>)
-      return "a string";
-    else if constexpr (std::is_same_v<T, std::vector<int>>)
-      return "a list of integers";
-    else
-      return "three numbers";
-  }
-
-  [[noreturn]] void type_error(const std::string& key, const toml::node* node,
-                               const char* expected) const
-  {
-    fail("{}:{}: [{}] {} must be {}", m_file.string(), node->source().begin.line, m_name, key,
-         expected);
-  }
-
-  const toml::table* m_table;
-  std::string m_name;
-  fs::path m_file;
-  std::set<std::string> m_known;
-};
-
-/// Reads each visited parameter from one section.
-struct TomlReader {
-  Section& section;
-
-  template <class T> void operator()(const char* key, T& value) { section.read(key, value); }
-
-  template <class E> void operator()(const char* key, Choice<E> choice)
-  {
-    std::string text = choice.name(choice.value);
-    section.read(key, text);
-    choice.value = choice.parse(text);
-  }
-};
-
-/// Reads the table `name` of `parent` with `visit_fields` and rejects keys it does not know.
-template <class P, class VisitFields>
-void read_section(const toml::table* parent, const char* name, const std::string& label,
-                  const fs::path& file, P& parameters, VisitFields visit_fields)
-{
-  Section section(parent ? parent->get_as<toml::table>(name) : nullptr, label, file);
-  visit_fields(parameters, TomlReader{section});
-  section.reject_unknown();
-}
-
-const toml::table* table_at(const toml::table* parent, const char* key)
-{
-  return parent ? parent->get_as<toml::table>(key) : nullptr;
-}
-
-/// A path of the config, relative to the config's folder unless absolute ("" stays "").
-std::string relative_to(const fs::path& config_file, const std::string& text)
-{
-  if (text.empty() || fs::path(text).is_absolute())
-    return text;
-  return (config_file.parent_path() / text).string();
-}
-
-} // namespace
-
-BuildConfig load_build_config(const fs::path& file)
+toml::table parse_config_file(const fs::path& file)
 {
   if (!fs::is_regular_file(file))
     fail("missing config file '{}'", file.string());
-  toml::table root;
   try {
-    root = toml::parse_file(file.string());
+    return toml::parse_file(file.string());
   } catch (const toml::parse_error& e) {
     fail("{}:{}: {}", file.string(), e.source().begin.line, e.description());
   }
+}
+
+void read_stage_sections(const toml::table& table, const std::string& prefix, const fs::path& file,
+                         BuildConfig& config)
+{
+  read_section(&table, "voxelize", prefix + "voxelize", file, config.voxelize,
+               [](auto& p, auto&& v) { visit_voxelize(p, v); });
+  read_section(&table, "centerline", prefix + "centerline", file, config.centerline,
+               [](auto& p, auto&& v) { visit_centerline(p, v); });
+  read_section(&table, "field", prefix + "field", file, config.field,
+               [](auto& p, auto&& v) { visit_field(p, v); });
+  read_section(&table, "tetmesh", prefix + "tetmesh", file, config.tetmesh,
+               [](auto& p, auto&& v) { visit_tetmesh(p, v); });
+  read_section(&table, "fibers", prefix + "fibers", file, config.fibers,
+               [](auto& p, auto&& v) { visit_fibers(p, v); });
+  read_section(&table, "model", prefix + "model", file, config.model,
+               [](auto& p, auto&& v) { visit_model(p, v); });
+  read_section(&table, "flexion", prefix + "flexion", file, config.flexion,
+               [](auto& p, auto&& v) { visit_flexion(p, v); });
+  if (const toml::table* flexion = table_at(&table, "flexion"))
+    config.flexion.axis_given = config.flexion.axis_given || flexion->contains("axis_point_mm") ||
+                                flexion->contains("axis_direction");
+}
+
+void read_anatomy_section(const toml::table& table, const fs::path& file, BuildConfig& config)
+{
+  read_section(&table, "anatomy", "anatomy", file, config.anatomy,
+               [](auto& p, auto&& v) { visit_anatomy(p, v); });
+  if (!config.anatomy.side.empty() && config.anatomy.side != "left" &&
+      config.anatomy.side != "right")
+    fail("{}: [anatomy] side must be \"left\" or \"right\", got \"{}\"", file.string(),
+         config.anatomy.side);
+  for (std::string* surface :
+       {&config.anatomy.medial_epicondyle_surface, &config.anatomy.lateral_epicondyle_surface})
+    *surface = relative_to(file, *surface);
+}
+
+std::string read_attachment_sections(const toml::table& table, const std::string& prefix,
+                                     const fs::path& file,
+                                     const std::vector<std::string>& distal_bones,
+                                     BuildConfig& config)
+{
+  const toml::table* attachments = table_at(&table, "attachments");
+  Section attachment_section(attachments, prefix + "attachments", file);
+  attachment_section.allow("femur");
+  std::string distal;
+  for (const std::string& bone : distal_bones) {
+    attachment_section.allow(bone);
+    if (attachment_section.has(bone)) {
+      if (!distal.empty())
+        fail("{}: [{}attachments] gives both {} and {}: the ligament's distal footprint lies on "
+             "one bone",
+             file.string(), prefix, distal, bone);
+      distal = bone;
+    }
+  }
+  attachment_section.reject_unknown();
+  if (distal.empty())
+    distal = distal_bones.front();
+  const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
+  read_section(attachments, "femur", prefix + "attachments.femur", file, config.femur_attachment,
+               rule);
+  read_section(attachments, distal.c_str(), prefix + "attachments." + distal, file,
+               config.tibia_attachment, rule);
+  for (attachments::Rule* r : {&config.femur_attachment, &config.tibia_attachment})
+    r->patch = relative_to(file, r->patch);
+  return distal;
+}
+
+void read_material_section(const toml::table& table, const std::string& prefix,
+                           const fs::path& file, BuildConfig& config)
+{
+  read_section(&table, "material", prefix + "material", file, config.material,
+               [](auto& p, auto&& v) { visit_material(p, v); });
+}
+
+} // namespace config_reading
+
+using namespace config_reading;
+
+BuildConfig load_build_config(const fs::path& file)
+{
+  const toml::table root = parse_config_file(file);
+  if (root.contains("ligament"))
+    fail("{}: this config describes a knee ([[ligament]] tables): `ligsim build` takes it; "
+         "this command takes one ligament's config",
+         file.string());
 
   BuildConfig config;
   Section top(&root, "top level", file);
-  for (const char* name : {"input", "anatomy", "attachments", "voxelize", "centerline", "field",
-                           "tetmesh", "fibers", "model", "material", "flexion"})
+  for (const char* name : {"input", "anatomy", "attachments", "material"})
+    top.allow(name);
+  for (const std::string& name : stage_section_names())
     top.allow(name);
   top.reject_unknown();
 
@@ -216,46 +128,10 @@ BuildConfig load_build_config(const fs::path& file)
     input.read_label(key, *target);
   input.reject_unknown();
 
-  read_section(&root, "anatomy", "anatomy", file, config.anatomy,
-               [](auto& p, auto&& v) { visit_anatomy(p, v); });
-  if (!config.anatomy.side.empty() && config.anatomy.side != "left" &&
-      config.anatomy.side != "right")
-    fail("{}: [anatomy] side must be \"left\" or \"right\", got \"{}\"", file.string(),
-         config.anatomy.side);
-  for (std::string* surface :
-       {&config.anatomy.medial_epicondyle_surface, &config.anatomy.lateral_epicondyle_surface})
-    *surface = relative_to(file, *surface);
-
-  const toml::table* attachments = table_at(&root, "attachments");
-  Section attachment_section(attachments, "attachments", file);
-  attachment_section.allow("femur");
-  attachment_section.allow("tibia");
-  attachment_section.reject_unknown();
-  const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
-  read_section(attachments, "femur", "attachments.femur", file, config.femur_attachment, rule);
-  read_section(attachments, "tibia", "attachments.tibia", file, config.tibia_attachment, rule);
-  for (attachments::Rule* r : {&config.femur_attachment, &config.tibia_attachment})
-    r->patch = relative_to(file, r->patch);
-
-  read_section(&root, "voxelize", "voxelize", file, config.voxelize,
-               [](auto& p, auto&& v) { visit_voxelize(p, v); });
-  read_section(&root, "centerline", "centerline", file, config.centerline,
-               [](auto& p, auto&& v) { visit_centerline(p, v); });
-  read_section(&root, "field", "field", file, config.field,
-               [](auto& p, auto&& v) { visit_field(p, v); });
-  read_section(&root, "tetmesh", "tetmesh", file, config.tetmesh,
-               [](auto& p, auto&& v) { visit_tetmesh(p, v); });
-  read_section(&root, "fibers", "fibers", file, config.fibers,
-               [](auto& p, auto&& v) { visit_fibers(p, v); });
-  read_section(&root, "model", "model", file, config.model,
-               [](auto& p, auto&& v) { visit_model(p, v); });
-  read_section(&root, "material", "material", file, config.material,
-               [](auto& p, auto&& v) { visit_material(p, v); });
-  read_section(&root, "flexion", "flexion", file, config.flexion,
-               [](auto& p, auto&& v) { visit_flexion(p, v); });
-  if (const toml::table* flexion = table_at(&root, "flexion"))
-    config.flexion.axis_given =
-        flexion->contains("axis_point_mm") || flexion->contains("axis_direction");
+  read_anatomy_section(root, file, config);
+  read_attachment_sections(root, "", file, {"tibia"}, config);
+  read_stage_sections(root, "", file, config);
+  read_material_section(root, "", file, config);
   return config;
 }
 

@@ -15,7 +15,8 @@ struct ContactConfig {
   std::optional<bool> enabled; ///< unset: on where the model has bone surfaces
   ContactSettings barrier;
   LevelSetSettings grid;
-  std::vector<std::string> bones; ///< flexion: which bones ("femur", "tibia"); empty: both
+  /// flexion: which bones ("femur", "tibia", "fibula"); empty: every bone the model has
+  std::vector<std::string> bones;
 };
 
 /// Throws InputError naming the first value that cannot work (d_hat, stiffness, voxel, band

@@ -65,8 +65,11 @@ void read_motion(TomlTable& table, const fs::path& base, MotionSettings& motion)
   table.reject_unknown_keys();
 }
 
-void read_ligament(TomlTable& table, LigamentSettings& ligament)
+void read_ligament(TomlTable& table, LigamentSettings& ligament, std::set<std::string>& given)
 {
+  for (const char* key : {"name", "failure_strain", "failure_load_n"})
+    if (table.has(key))
+      given.insert(std::string("ligament.") + key);
   ligament.name = table.text("name", ligament.name);
   ligament.failure_strain = table.number("failure_strain", ligament.failure_strain);
   ligament.failure_load_n = table.number("failure_load_n", ligament.failure_load_n);
@@ -75,6 +78,9 @@ void read_ligament(TomlTable& table, LigamentSettings& ligament)
 
 void read_material(TomlTable& table, FlexionSettings& settings)
 {
+  settings.given.insert("material");
+  if (table.has("in_situ_strain"))
+    settings.given.insert("in_situ_strain");
   MaterialParameters& material = settings.material;
   FiberParameters& fiber = *material.fiber;
   material.mu_mpa = table.number("mu_mpa", material.mu_mpa);
@@ -121,8 +127,9 @@ void read_contact(TomlTable& table, ContactConfig& contact)
   if (table.has("bones")) {
     contact.bones = table.texts("bones");
     for (const std::string& bone : contact.bones)
-      if (bone != "femur" && bone != "tibia")
-        table.fail_at("bones", "expected \"femur\" and/or \"tibia\", got \"" + bone + "\"");
+      if (bone != "femur" && bone != "tibia" && bone != "fibula")
+        table.fail_at("bones",
+                      "expected \"femur\", \"tibia\" and/or \"fibula\", got \"" + bone + "\"");
   }
   table.reject_unknown_keys();
 }
@@ -150,6 +157,8 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
   settings.images = root.boolean("images", settings.images);
   if (root.has("image_angles_deg"))
     settings.image_angles_deg = root.numbers("image_angles_deg");
+  if (root.has("ligaments"))
+    settings.ligaments = root.texts("ligaments");
   if (auto axis = root.table("axis"))
     read_axis(*axis, settings.axis);
   if (auto anatomy = root.table("anatomy"))
@@ -157,7 +166,7 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
   if (auto motion = root.table("motion"))
     read_motion(*motion, base, settings.motion);
   if (auto ligament = root.table("ligament"))
-    read_ligament(*ligament, settings.ligament);
+    read_ligament(*ligament, settings.ligament, settings.given);
   if (auto material = root.table("material"))
     read_material(*material, settings);
   if (auto quasi_static = root.table("static"))

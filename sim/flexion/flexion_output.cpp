@@ -10,6 +10,7 @@
 #include <vtkPolyData.h>
 
 #include <cmath>
+#include <map>
 
 namespace ligsim::sim {
 
@@ -69,22 +70,36 @@ nlohmann::json angle_json(const AngleResult& angle)
   return entry;
 }
 
-FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& model,
+FlexionOutput::FlexionOutput(std::vector<OutputLigament> ligaments, const KneeModel& bones,
                              RigidMotion femur, fs::path directory)
-    : m_body(body)
-    , m_model(model)
+    : m_ligaments(std::move(ligaments))
+    , m_femur_surface(bones.femur)
+    , m_tibia(bones.tibia)
+    , m_fibula(bones.fibula)
     , m_femur(std::move(femur))
     , m_directory(std::move(directory))
-    , m_ligament(body, m_directory)
 {
-  write_vtk(m_model.tibia, m_directory / "tibia.vtp");
+  write_vtk(m_tibia, m_directory / "tibia.vtp");
+  if (m_fibula)
+    write_vtk(m_fibula, m_directory / "fibula.vtp");
+  for (const OutputLigament& ligament : m_ligaments)
+    if (!ligament.folder.empty())
+      ensure_directory(m_directory / ligament.folder);
+}
+
+FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& model,
+                             RigidMotion femur, fs::path directory)
+    : FlexionOutput({{"ligament", "", model.distal_bone}}, model, std::move(femur),
+                    std::move(directory))
+{
+  m_body = &body;
 }
 
 vtkSmartPointer<vtkPolyData> FlexionOutput::moved_femur(double load_factor) const
 {
   const Eigen::Isometry3d pose = m_femur.pose(load_factor);
   auto femur = vtkSmartPointer<vtkPolyData>::New();
-  femur->DeepCopy(m_model.femur);
+  femur->DeepCopy(m_femur_surface);
   vtkPoints* points = femur->GetPoints();
   for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p) {
     double xyz[3];
@@ -98,69 +113,105 @@ vtkSmartPointer<vtkPolyData> FlexionOutput::moved_femur(double load_factor) cons
 vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(const AngleResult& angle,
                                                                 const Eigen::VectorXd& x)
 {
+  return write_angle(0, *m_body, angle, x);
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(std::size_t ligament,
+                                                                const HyperelasticBody& body,
+                                                                const AngleResult& angle,
+                                                                const Eigen::VectorXd& x)
+{
   const std::string label = step_label(angle);
-  const std::string ligament = "ligament_" + label + ".vtu";
-  const std::string femur = "femur_" + label + ".vtp";
+  const fs::path folder = m_ligaments.at(ligament).folder;
+  const std::string file = (folder / ("ligament_" + label + ".vtu")).string();
   PointArrays contact;
   if (angle.gap_mm.size() > 0)
     contact = {{"gap_mm", angle.gap_mm}, {"contact_pressure", angle.pressure_mpa}};
-  auto grid = m_ligament.write(ligament, angle.angle_deg, x, contact);
-  write_vtk(moved_femur(angle.load_factor), m_directory / femur);
+  auto grid = SceneOutput(body, m_directory).write(file, angle.angle_deg, x, contact);
   // ParaView's time: the angle, or the time of a motion in time.
   const double time = std::isnan(angle.time_s) ? angle.angle_deg : angle.time_s;
-  m_series.push_back({time, 0, ligament});
-  m_series.push_back({time, 1, femur});
-  m_series.push_back({time, 2, "tibia.vtp"});
+  m_series.push_back({time, static_cast<int>(ligament), file});
+  const std::string femur = "femur_" + label + ".vtp";
+  if (m_femurs_written.insert(femur).second) {
+    write_vtk(moved_femur(angle.load_factor), m_directory / femur);
+    const int bones = static_cast<int>(m_ligaments.size());
+    m_series.push_back({time, bones, femur});
+    m_series.push_back({time, bones + 1, "tibia.vtp"});
+    if (m_fibula)
+      m_series.push_back({time, bones + 2, "fibula.vtp"});
+  }
   return grid;
 }
 
 void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
 {
+  finish(std::vector<std::vector<AngleResult>>{angles});
+}
+
+void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) const
+{
   if (!m_series.empty())
     write_pvd(m_directory / "flexion.pvd", m_series);
-  std::string csv = "angle_deg,strain_energy_mj,converged,max_fiber_stretch,mean_fiber_stretch,"
-                    "femur_force_n,tibia_force_n,newton_iterations,substeps,relative_residual,"
-                    "min_j,wall_s,femur_contact_n,tibia_contact_n,femur_contact_area_mm2,"
-                    "tibia_contact_area_mm2,max_penetration_mm,mean_fiber_strain,max_fiber_strain,"
-                    "volume_beyond_failure_strain,length_change_mm,length_change_pct,time_s\n";
-  for (const AngleResult& a : angles) {
-    csv += fmt::format("{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{:.9g},{},{},{:.3g},{:.6g},{:.4f}",
-                       a.angle_deg, a.strain_energy_mj, a.converged ? 1 : 0, a.max_fiber_stretch,
-                       a.mean_fiber_stretch, a.femur_force_n.norm(), a.tibia_force_n.norm(),
-                       a.newton_iterations, a.substeps, a.relative_residual, a.min_j, a.wall_s);
-    // Contact columns stay empty where contact is off or the bone takes none.
-    std::string force[2], area[2], penetration;
-    double deepest = 0.0;
-    for (const BoneContact& bone : a.contact) {
-      const int b = bone.bone == "femur" ? 0 : 1;
-      if (bone.in_solve) {
-        force[b] = fmt::format("{:.9g}", bone.force_n.norm());
-        area[b] = fmt::format("{:.6g}", bone.area_mm2);
+  const bool fibula = m_fibula != nullptr;
+  std::string csv = "ligament,angle_deg,strain_energy_mj,converged,max_fiber_stretch,"
+                    "mean_fiber_stretch,femur_force_n,tibia_force_n,newton_iterations,substeps,"
+                    "relative_residual,min_j,wall_s,femur_contact_n,tibia_contact_n,"
+                    "femur_contact_area_mm2,tibia_contact_area_mm2,max_penetration_mm,"
+                    "mean_fiber_strain,max_fiber_strain,volume_beyond_failure_strain,"
+                    "length_change_mm,length_change_pct,time_s";
+  csv += fibula ? ",fibula_force_n,fibula_contact_n,fibula_contact_area_mm2\n" : "\n";
+  const auto number = [](double value) {
+    return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
+  };
+  for (std::size_t l = 0; l < angles.size(); ++l) {
+    const OutputLigament& ligament = m_ligaments.at(l);
+    for (const AngleResult& a : angles[l]) {
+      // The distal footprint's force goes to its bone's column; the other bone's stays empty.
+      const std::string distal = fmt::format("{:.9g}", a.tibia_force_n.norm());
+      const bool on_tibia = ligament.distal_bone == "tibia";
+      csv += fmt::format("{},{:g},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{},{},{:.3g},{:.6g},{:.4f}",
+                         ligament.name, a.angle_deg, a.strain_energy_mj, a.converged ? 1 : 0,
+                         a.max_fiber_stretch, a.mean_fiber_stretch, a.femur_force_n.norm(),
+                         on_tibia ? distal : "", a.newton_iterations, a.substeps,
+                         a.relative_residual, a.min_j, a.wall_s);
+      // Contact columns stay empty where contact is off or the bone takes none.
+      std::map<std::string, std::pair<std::string, std::string>> contact;
+      std::string penetration;
+      double deepest = 0.0;
+      for (const BoneContact& bone : a.contact) {
+        if (bone.in_solve)
+          contact[bone.bone] = {fmt::format("{:.9g}", bone.force_n.norm()),
+                                fmt::format("{:.6g}", bone.area_mm2)};
+        deepest = std::max(deepest, bone.penetration_mm);
+        penetration = fmt::format("{:.4g}", deepest);
       }
-      deepest = std::max(deepest, bone.penetration_mm);
-      penetration = fmt::format("{:.4g}", deepest);
+      csv += fmt::format(",{},{},{},{},{}", contact["femur"].first, contact["tibia"].first,
+                         contact["femur"].second, contact["tibia"].second, penetration);
+      csv += fmt::format(",{:.6g},{:.6g},{:.6g},{},{},{}", a.mean_fiber_stretch - 1.0,
+                         a.max_fiber_stretch - 1.0, a.failed_volume_fraction,
+                         number(a.length_change_mm), number(a.length_change_pct), number(a.time_s));
+      if (fibula)
+        csv += fmt::format(",{},{},{}", on_tibia ? "" : distal, contact["fibula"].first,
+                           contact["fibula"].second);
+      csv += "\n";
     }
-    csv += fmt::format(",{},{},{},{},{}", force[0], force[1], area[0], area[1], penetration);
-    const auto number = [](double value) {
-      return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
-    };
-    csv += fmt::format(",{:.6g},{:.6g},{:.6g},{},{},{}\n", a.mean_fiber_stretch - 1.0,
-                       a.max_fiber_stretch - 1.0, a.failed_volume_fraction,
-                       number(a.length_change_mm), number(a.length_change_pct), number(a.time_s));
   }
   write_text_atomically(m_directory / "flexion.csv", csv);
 
   PlotSpec plot;
-  plot.title = "Strain energy of the ligament across flexion";
+  plot.title = m_ligaments.size() > 1 ? "Strain energy of the ligaments across flexion"
+                                      : "Strain energy of the ligament across flexion";
   plot.x_label = "flexion angle (deg)";
   plot.y_label = "strain energy (mJ)";
-  PlotSeries series;
-  series.name = "strain energy";
-  for (const AngleResult& a : angles) {
-    series.x.push_back(a.angle_deg);
-    series.y.push_back(a.strain_energy_mj);
+  for (std::size_t l = 0; l < angles.size(); ++l) {
+    PlotSeries series;
+    series.name = m_ligaments.size() > 1 ? m_ligaments[l].name : "strain energy";
+    for (const AngleResult& a : angles[l]) {
+      series.x.push_back(a.angle_deg);
+      series.y.push_back(a.strain_energy_mj);
+    }
+    plot.series.push_back(series);
   }
-  plot.series.push_back(series);
   write_text_atomically(m_directory / "strain_energy.svg", svg_line_plot(plot));
 }
 

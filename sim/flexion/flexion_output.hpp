@@ -1,7 +1,8 @@
 #pragma once
-/// @brief Files of a flexion sweep: per angle the ligament (ligament_<angle>.vtu) and the turned
-/// femur (femur_<angle>.vtp), the fixed tibia once (tibia.vtp), one flexion.pvd showing them
-/// together in ParaView, the table flexion.csv and strain_energy.svg (energy against angle).
+/// @brief Files of a flexion sweep: per angle each ligament (ligament_<angle>.vtu, in the
+/// ligament's folder for a knee) and the turned femur (femur_<angle>.vtp), the fixed tibia and
+/// fibula once (tibia.vtp, fibula.vtp), one flexion.pvd showing them together in ParaView, the
+/// table flexion.csv (a row per ligament and angle) and strain_energy.svg (energy against angle).
 
 #include "common/vtk_files.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -11,6 +12,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,28 +26,49 @@ std::string step_label(const AngleResult& angle);
 /// One row of the sweep as JSON (summary.json's per-angle entries).
 nlohmann::json angle_json(const AngleResult& angle);
 
+/// One ligament of the output.
+struct OutputLigament {
+  std::string name;
+  std::string folder;                ///< its files, relative to the output folder ("": in it)
+  std::string distal_bone = "tibia"; ///< "tibia" or "fibula"
+};
+
 class FlexionOutput {
 public:
+  /// The ligaments' files in their folders; the bones of `bones` (the femur turned by `femur`,
+  /// the tibia and the fibula fixed) in `directory`.
+  FlexionOutput(std::vector<OutputLigament> ligaments, const KneeModel& bones, RigidMotion femur,
+                std::filesystem::path directory);
+  /// One ligament, `body`, written in `directory` itself.
   FlexionOutput(const HyperelasticBody& body, const KneeModel& model, RigidMotion femur,
                 std::filesystem::path directory);
 
-  /// Writes the angle's files; returns the ligament as written (for the pictures).
+  /// Writes ligament `ligament`'s state at the angle (ligament_<angle>.vtu in its folder) and the
+  /// femur at the angle if not yet written; returns the ligament as written (for the pictures).
+  vtkSmartPointer<vtkUnstructuredGrid> write_angle(std::size_t ligament,
+                                                   const HyperelasticBody& body,
+                                                   const AngleResult& angle,
+                                                   const Eigen::VectorXd& x);
+  /// The same for the one body of the second constructor.
   vtkSmartPointer<vtkUnstructuredGrid> write_angle(const AngleResult& angle,
                                                    const Eigen::VectorXd& x);
-  /// Writes flexion.pvd for the angles written so far, flexion.csv and strain_energy.svg for
-  /// `angles`.
+  /// Writes flexion.pvd for the angles written so far, and flexion.csv (a row per ligament and
+  /// angle) and strain_energy.svg for `angles`, one list per ligament.
+  void finish(const std::vector<std::vector<AngleResult>>& angles) const;
+  /// The same for one ligament.
   void finish(const std::vector<AngleResult>& angles) const;
 
   /// The femur surface in its pose at load factor t.
   vtkSmartPointer<vtkPolyData> moved_femur(double load_factor) const;
 
 private:
-  const HyperelasticBody& m_body;
-  const KneeModel& m_model;
+  std::vector<OutputLigament> m_ligaments;
+  const HyperelasticBody* m_body = nullptr; ///< the one body of the second constructor
+  vtkSmartPointer<vtkPolyData> m_femur_surface, m_tibia, m_fibula;
   RigidMotion m_femur;
   std::filesystem::path m_directory;
-  SceneOutput m_ligament;
   std::vector<PvdDataSet> m_series;
+  std::set<std::string> m_femurs_written;
 };
 
 } // namespace ligsim::sim

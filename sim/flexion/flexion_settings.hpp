@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,12 @@ struct FlexionSettings {
   bool images = true;
   /// The angles drawn as PNG (those of them in the sweep).
   std::vector<double> image_angles_deg = {0, 45, 90};
+  /// The ligaments of a knee model to sweep, by name (empty: all of them).
+  std::vector<std::string> ligaments;
+  /// What the config or the flags set rather than left at its default: "material",
+  /// "in_situ_strain", "ligament.name", "ligament.failure_strain", "ligament.failure_load_n". A
+  /// knee model takes each ligament's own values (knee.json) for what is not given.
+  std::set<std::string> given;
 };
 
 /// Throws InputError naming the first setting that cannot work (empty or unordered angles,

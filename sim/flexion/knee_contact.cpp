@@ -41,20 +41,28 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
                          const ContactConfig& config, const fs::path& cache_dir)
 {
   validate(config);
-  const std::vector<std::string> names =
-      config.bones.empty() ? std::vector<std::string>{"femur", "tibia"} : config.bones;
+  std::vector<std::string> names = config.bones;
+  if (names.empty())
+    names = model.fibula ? std::vector<std::string>{"femur", "tibia", "fibula"}
+                         : std::vector<std::string>{"femur", "tibia"};
   const int node_count = static_cast<int>(model.mesh.V.rows());
   std::vector<ContactObstacle> obstacles;
   for (const std::string& name : names) {
     auto bone = std::make_unique<Bone>();
     bone->name = name;
-    vtkPolyData* surface = name == "femur" ? model.femur : model.tibia;
+    vtkPolyData* surface = bone_of(model, name);
+    if (surface == nullptr)
+      fail("contact with the {}: the model has no {} surface", name, name);
     const TriangleSurface triangles = triangle_surface(surface, name + ".vtp");
     bone->grid = BoneLevelSet::cached(triangles, config.grid, cache_dir / (name + ".vdb"));
     for (const ConstraintSet& set : conditions.constraints)
       if (set.name == name)
         bone->motion = set.rigid;
-    const std::vector<int>& attached = name == "femur" ? model.femur_nodes : model.tibia_nodes;
+    // The femoral footprint's nodes are bound to the femur, the distal one's to its bone; the
+    // fibula moves with the tibia (both fixed here: the femur carries the knee's motion).
+    const std::vector<int> attached = name == "femur"             ? model.femur_nodes
+                                      : name == model.distal_bone ? model.tibia_nodes
+                                                                  : std::vector<int>{};
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;

@@ -32,8 +32,8 @@ struct BoneContact {
 
 class KneeContact {
 public:
-  /// Grids of the bones `config.bones` names (empty: both), read from or written to
-  /// `cache_dir`; the femur follows the "femur" set's rigid motion of `conditions`.
+  /// Grids of the bones `config.bones` names (empty: every bone of the model), read from or written
+  /// to `cache_dir`; the femur follows the "femur" set's rigid motion of `conditions`.
   KneeContact(const KneeModel& model, const BoundaryConditions& conditions,
               const ContactConfig& config, const std::filesystem::path& cache_dir);
   ~KneeContact();

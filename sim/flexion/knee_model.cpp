@@ -9,6 +9,7 @@
 #include <vtkPolyData.h>
 
 #include <cmath>
+#include <map>
 
 namespace ligsim::sim {
 
@@ -91,6 +92,55 @@ TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what)
       result.F(c, i) = static_cast<int>(ids->GetId(i));
   }
   return result;
+}
+
+vtkPolyData* bone_of(const KneeModel& model, const std::string& name)
+{
+  if (name == "femur")
+    return model.femur;
+  if (name == "tibia")
+    return model.tibia;
+  if (name == "fibula")
+    return model.fibula;
+  return nullptr;
+}
+
+std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& single_name)
+{
+  const std::optional<KneeManifest> manifest = read_knee_manifest(dir);
+  if (!manifest) {
+    // One ligament's folder of a knee: that ligament of the knee, with the knee's bones.
+    const fs::path folder = fs::absolute(dir).lexically_normal();
+    const fs::path knee =
+        folder.has_filename() ? folder.parent_path() : folder.parent_path().parent_path();
+    const std::string name = (folder.has_filename() ? folder : folder.parent_path()).filename();
+    if (const auto parent = read_knee_manifest(knee))
+      for (const KneeLigament& entry : parent->ligaments)
+        if (entry.folder == name) {
+          std::vector<LigamentModel> all = load_knee(knee, single_name);
+          for (LigamentModel& ligament : all)
+            if (ligament.name == entry.name)
+              return {std::move(ligament)};
+        }
+    return {{single_name, load_knee_model(dir), dir, std::nullopt}};
+  }
+  std::map<std::string, vtkSmartPointer<vtkPolyData>> bones;
+  for (const auto& [name, file] : manifest->bones)
+    bones[name] = bone_surface(dir, file, name);
+  const KneeAnatomy anatomy = read_knee_anatomy(dir);
+  std::vector<LigamentModel> ligaments;
+  for (const KneeLigament& entry : manifest->ligaments) {
+    LigamentModel ligament{entry.name, load_knee_model(dir / entry.folder), dir / entry.folder,
+                           entry};
+    KneeModel& model = ligament.model;
+    model.femur = bones.at("femur");
+    model.tibia = bones.at("tibia");
+    model.fibula = bones.count("fibula") ? bones.at("fibula") : nullptr;
+    model.distal_bone = entry.distal_bone;
+    model.anatomy = anatomy;
+    ligaments.push_back(std::move(ligament));
+  }
+  return ligaments;
 }
 
 KneeModel load_knee_model(const fs::path& dir)

@@ -1,9 +1,11 @@
 #pragma once
 /// @brief A built knee model as `ligsim build` leaves it in its output folder: the ligament's
 /// tets with per-tet fiber directions and attachment flags (model.vtu), the femur and tibia
-/// surfaces (femur.vtp, tibia.vtp).
+/// surfaces (femur.vtp, tibia.vtp); or a knee of several ligaments (knee.json: one such folder
+/// per ligament, the bones once).
 
 #include "common/knee_anatomy.hpp"
+#include "common/knee_manifest.hpp"
 #include "common/mesh.hpp"
 
 #include <Eigen/Core>
@@ -11,6 +13,7 @@
 #include <vtkSmartPointer.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,9 +23,11 @@ struct KneeModel {
   TetMesh mesh;
   Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
   std::vector<int> femur_nodes;      ///< move rigidly with the femur
-  std::vector<int> tibia_nodes;      ///< stay with the (fixed) tibia
+  std::vector<int> tibia_nodes;      ///< stay with the (fixed) distal bone: tibia or fibula
   vtkSmartPointer<vtkPolyData> femur;
   vtkSmartPointer<vtkPolyData> tibia;
+  vtkSmartPointer<vtkPolyData> fibula; ///< null when the knee has none; moves with the tibia
+  std::string distal_bone = "tibia";   ///< the bone `tibia_nodes` are bound to
   KneeAnatomy anatomy; ///< anatomy.json of the folder (empty for models built without it)
   Points centerline;   ///< centerline.vtp of the folder, #P x 3 mm (0 rows without it)
 };
@@ -31,6 +36,25 @@ struct KneeModel {
 /// model.vtu, its "fiber" cell array or attachment flags, an empty or overlapping attachment
 /// set, a bone surface, a fiber of zero length.
 KneeModel load_knee_model(const std::filesystem::path& dir);
+
+/// One ligament of a model folder, with what the knee says of it.
+struct LigamentModel {
+  std::string name;
+  KneeModel model;                      ///< its mesh, with the knee's bones and anatomy
+  std::filesystem::path folder;         ///< its model folder
+  std::optional<KneeLigament> manifest; ///< knee.json's entry; none for a one-ligament model
+};
+
+/// A model folder's ligaments: those knee.json lists (each loaded from its folder, with the
+/// knee's bones, anatomy.json and, for the ones bound to it, the fibula); for one ligament's
+/// folder of a knee, that ligament as the knee has it; else the folder's one ligament called
+/// `single_name`. Throws InputError as load_knee_model does, or naming knee.json
+/// and the file it lacks.
+std::vector<LigamentModel> load_knee(const std::filesystem::path& dir,
+                                     const std::string& single_name);
+
+/// The bone called `name` ("femur", "tibia" or "fibula") of the model, null if it has none.
+vtkPolyData* bone_of(const KneeModel& model, const std::string& name);
 
 /// Up the leg: from the tibia's mean vertex to the femur's (a hint for the axis fit and the
 /// pictures' up direction, not an anatomical axis).

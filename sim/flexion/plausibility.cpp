@@ -58,6 +58,10 @@ std::optional<PublishedArea> published_footprint_area(const std::string& ligamen
   if (ligament == "LCL")
     return bone == "femur" ? PublishedArea{48.0, 0.0, "LaPrade et al. 2003 (range 43-52)"}
                            : PublishedArea{43.0, 0.0, "LaPrade et al. 2003 (range 39-50)"};
+  // ACL: Araki et al., Knee Surg Sports Traumatol Arthrosc 2017.
+  if (ligament == "ACL")
+    return bone == "femur" ? PublishedArea{109.7, 10.9, "Araki et al. 2017 (ACL)"}
+                           : PublishedArea{135.2, 15.1, "Araki et al. 2017 (ACL)"};
   return std::nullopt;
 }
 
@@ -65,7 +69,7 @@ std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axi
 {
   const ContactSurface boundary = boundary_surface(model.mesh);
   return {footprint_of(model.mesh, boundary, model.femur_nodes, "femur", axis),
-          footprint_of(model.mesh, boundary, model.tibia_nodes, "tibia", axis)};
+          footprint_of(model.mesh, boundary, model.tibia_nodes, model.distal_bone, axis)};
 }
 
 nlohmann::json footprints_json(const std::vector<Footprint>& prints, const std::string& ligament)
@@ -110,8 +114,9 @@ std::vector<std::string> plausibility_warnings(const AngleResult& angle,
         "strain {:.1f} %){}",
         100.0 * angle.failed_volume_fraction, ligament.name, 100.0 * ligament.failure_strain,
         100.0 * (angle.max_fiber_stretch - 1.0), why));
-  for (const auto& [bone, force] :
-       {std::pair{"femur", angle.femur_force_n}, std::pair{"tibia", angle.tibia_force_n}})
+  const std::string distal = context.footprints.size() > 1 ? context.footprints[1].bone : "tibia";
+  for (const auto& [bone, force] : {std::pair{std::string("femur"), angle.femur_force_n},
+                                    std::pair{distal, angle.tibia_force_n}})
     if (force.norm() > ligament.failure_load_n)
       warnings.push_back(fmt::format("the {} pulls on the {} with {:.0f} N, beyond its failure "
                                      "load of {:.0f} N{}",

@@ -222,7 +222,9 @@ vtkSmartPointer<vtkLookupTable> energy_colours(double max_mpa)
   return table;
 }
 
-void place_camera(vtkRenderer* renderer, const PictureCamera& camera)
+} // namespace
+
+void place_parallel_camera(vtkRenderer* renderer, const PictureCamera& camera)
 {
   double bounds[6];
   renderer->ComputeVisiblePropBounds(bounds);
@@ -244,8 +246,6 @@ void place_camera(vtkRenderer* renderer, const PictureCamera& camera)
   view->SetParallelScale(0.5 * camera.view_height_mm);
   renderer->ResetCameraClippingRange();
 }
-
-} // namespace
 
 double strain_energy_percentile_mpa(vtkUnstructuredGrid* ligament, double fraction)
 {
@@ -413,7 +413,7 @@ void render_ligament_png(const LigamentPicture& picture, const PictureCamera& ca
     renderer->AddViewProp(caption);
   }
 
-  place_camera(renderer, camera);
+  place_parallel_camera(renderer, camera);
   write_window_png(window, png);
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 class vtkPolyData;
+class vtkRenderer;
 class vtkUnstructuredGrid;
 
 namespace ligsim::sim {
@@ -42,6 +43,10 @@ struct LigamentPicture {
   int max_fibers = 3000; ///< fiber strokes drawn at most (they are also kept 1.25 lengths apart)
   int width = 1200, height = 900;
 };
+
+/// Points the renderer's camera as `camera` says (parallel projection), far enough back that the
+/// whole scene lies in front of it.
+void place_parallel_camera(vtkRenderer* renderer, const PictureCamera& camera);
 
 /// The strain energy density (MPa) below which `fraction` of the cells lie, e.g. 0.99: a top for
 /// the colour scale that a few extreme tets (at an attachment's edge) do not decide. Throws

@@ -1,0 +1,29 @@
+#pragma once
+/// @brief Building a knee: every ligament through its own stage graph in its own folder (its own
+/// cache: changing one ligament's settings reruns that ligament's stages only), and the knee's
+/// folder around them: the shared bones, the knee's anatomy and knee.json.
+
+#include "pipeline/stage_graph/knee_config.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace ligsim {
+class RunSummary;
+}
+
+namespace ligsim::pipeline {
+
+/// Runs `target` and the stages it needs for every ligament of `knee`, in <dir>/<name>/ (each
+/// with its own summary.json), records each ligament's stages in `summary` as "<name>/<stage>"
+/// and, when `target` is "model", writes the knee's files in `dir`: femur.vtp, tibia.vtp,
+/// fibula.vtp (if given), anatomy.json and knee.json.
+void build_knee(const KneeConfig& knee, const std::filesystem::path& dir, const std::string& target,
+                bool force, RunSummary& summary);
+
+/// Every parameter of the knee, as JSON (summary.json): per ligament as to_json(BuildConfig).
+nlohmann::json to_json(const KneeConfig& knee);
+
+} // namespace ligsim::pipeline

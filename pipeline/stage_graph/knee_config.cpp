@@ -1,0 +1,139 @@
+#include "pipeline/stage_graph/knee_config.hpp"
+
+#include "common/error.hpp"
+#include "pipeline/stage_graph/config_section.hpp"
+#include "pipeline/stage_graph/ligament_defaults.hpp"
+
+#include <algorithm>
+#include <set>
+
+namespace ligsim::pipeline {
+
+namespace fs = std::filesystem;
+using namespace config_reading;
+
+namespace {
+
+/// A name that is a folder name on every system: letters, digits, '-' and '_'.
+bool plain_name(const std::string& name)
+{
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '-' || c == '_';
+  });
+}
+
+LigamentConfig read_ligament(const toml::table& table, std::size_t index, const KneeConfig& knee)
+{
+  const fs::path& file = knee.file;
+  const std::string where = fmt::format("ligament {}", index + 1);
+  Section entry(&table, where, file);
+  LigamentConfig ligament;
+  entry.read("name", ligament.name);
+  if (!plain_name(ligament.name))
+    fail("{}:{}: [[ligament]] {} needs a name of letters, digits, '-' or '_' (its output "
+         "folder), got \"{}\"",
+         file.string(), table.source().begin.line, index + 1, ligament.name);
+
+  // Its defaults by name, then the knee's shared sections, then its own.
+  ligament.build = knee.shared;
+  if (const auto defaults = ligament_defaults(ligament.name)) {
+    ligament.build.material = defaults->material;
+    ligament.failure_strain = defaults->failure_strain;
+    ligament.failure_load_n = defaults->failure_load_n;
+    ligament.defaults_source = defaults->material_source + "; " + defaults->failure_source;
+  } else {
+    ligament.defaults_source = "not a ligament with published defaults (MCL, LCL, ACL, PCL): "
+                               "the MCL's material and failure figures";
+  }
+  entry.read("failure_strain", ligament.failure_strain);
+  entry.read("failure_load_n", ligament.failure_load_n);
+  entry.read("contact_bones", ligament.contact_bones);
+  for (const std::string& bone : ligament.contact_bones)
+    if (bone != "femur" && bone != "tibia" && bone != "fibula")
+      fail("{}:{}: ligament {}: contact_bones lists \"{}\"; the knee's bones are femur, tibia "
+           "and fibula",
+           file.string(), table.source().begin.line, ligament.name, bone);
+  for (const char* name : {"input", "attachments", "material"})
+    entry.allow(name);
+  for (const std::string& name : stage_section_names())
+    entry.allow(name);
+  entry.reject_unknown();
+  if (!(ligament.failure_strain > 0.0) || !(ligament.failure_load_n > 0.0))
+    fail("{}:{}: ligament {}: failure_strain and failure_load_n must be positive", file.string(),
+         table.source().begin.line, ligament.name);
+
+  const std::string prefix = "ligament." + ligament.name + ".";
+  Section input(table_at(&table, "input"), prefix + "input", file);
+  ligament.build.surface.clear();
+  input.read_path("surface", ligament.build.surface);
+  input.read("strict", ligament.build.strict);
+  input.reject_unknown();
+  if (ligament.build.surface.empty())
+    fail("{}:{}: ligament {} has no surface: give [ligament.input] surface (a file, or a glTF "
+         "file with #MESH)",
+         file.string(), table.source().begin.line, ligament.name);
+
+  ligament.distal_bone =
+      read_attachment_sections(table, prefix, file, {"tibia", "fibula"}, ligament.build);
+  read_stage_sections(table, prefix, file, ligament.build);
+  read_material_section(table, prefix, file, ligament.build);
+  const fs::path& distal = ligament.distal_bone == "fibula" ? knee.fibula : knee.tibia;
+  if (distal.empty())
+    fail("{}:{}: ligament {} attaches to the {}, but [input] gives no {} surface", file.string(),
+         table.source().begin.line, ligament.name, ligament.distal_bone, ligament.distal_bone);
+  ligament.build.tibia = distal;
+  return ligament;
+}
+
+} // namespace
+
+bool is_knee_config(const fs::path& file)
+{
+  return parse_config_file(file).contains("ligament");
+}
+
+KneeConfig load_knee_config(const fs::path& file)
+{
+  const toml::table root = parse_config_file(file);
+  KneeConfig knee;
+  knee.file = file;
+  Section top(&root, "top level", file);
+  for (const char* name : {"input", "anatomy", "ligament"})
+    top.allow(name);
+  for (const std::string& name : stage_section_names())
+    top.allow(name);
+  if (root.contains("material") || root.contains("attachments"))
+    fail("{}: a knee config gives [material] and [attachments] per ligament "
+         "([ligament.material], [ligament.attachments.femur], ...)",
+         file.string());
+  top.reject_unknown();
+
+  Section input(table_at(&root, "input"), "input", file);
+  input.read_path("femur", knee.femur);
+  input.read_path("tibia", knee.tibia);
+  input.read_path("fibula", knee.fibula);
+  input.read("strict", knee.shared.strict);
+  input.reject_unknown();
+  if (knee.femur.empty() || knee.tibia.empty())
+    fail("{}: a knee config needs the femur and the tibia ([input] femur and tibia)",
+         file.string());
+  knee.shared.femur = knee.femur;
+  knee.shared.tibia = knee.tibia;
+  read_anatomy_section(root, file, knee.shared);
+  read_stage_sections(root, "", file, knee.shared);
+
+  const toml::array* ligaments = root.get_as<toml::array>("ligament");
+  if (ligaments == nullptr || ligaments->empty() || !ligaments->is_array_of_tables())
+    fail("{}: `ligament` must be an array of tables: one [[ligament]] per ligament", file.string());
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < ligaments->size(); ++i) {
+    LigamentConfig ligament = read_ligament(*ligaments->get(i)->as_table(), i, knee);
+    if (!names.insert(ligament.name).second)
+      fail("{}: two ligaments are called {}: each needs its own name (its output folder)",
+           file.string(), ligament.name);
+    knee.ligaments.push_back(std::move(ligament));
+  }
+  return knee;
+}
+
+} // namespace ligsim::pipeline

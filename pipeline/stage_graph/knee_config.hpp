@@ -1,0 +1,42 @@
+#pragma once
+/// @brief A knee's build config: the bones once ([input] femur, tibia, fibula), the knee's
+/// anatomy, stage sections that every ligament shares, and one [[ligament]] table per ligament
+/// whose sections read as a one-ligament config's do (format in docs/knee-model.md).
+
+#include "pipeline/stage_graph/build_config.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ligsim::pipeline {
+
+/// One ligament of a knee.
+struct LigamentConfig {
+  std::string name;              ///< its folder in the knee's output and its label, e.g. "ACL"
+  std::string distal_bone;       ///< "tibia" or "fibula": where its distal footprint lies
+  double failure_strain = 0.171; ///< fiber strain (stretch - 1)
+  double failure_load_n = 799.0; ///< N
+  std::string defaults_source;   ///< where its material and failure defaults come from
+  /// The bones it meets by contact in a flexion (empty: every bone of the knee).
+  std::vector<std::string> contact_bones;
+  BuildConfig build; ///< its stages; build.tibia is its distal bone's surface
+};
+
+struct KneeConfig {
+  std::filesystem::path file;
+  std::filesystem::path femur, tibia, fibula; ///< fibula optional
+  BuildConfig shared; ///< the bones, anatomy and stage sections before any ligament's own
+  std::vector<LigamentConfig> ligaments;
+};
+
+/// Whether `file` is a knee config: a TOML file with a `ligament` array of tables.
+bool is_knee_config(const std::filesystem::path& file);
+
+/// Reads a knee config. Relative paths are relative to the file's folder. Throws InputError with
+/// the file, line and key on a syntax error, an unknown key, a value of the wrong type, a
+/// ligament without name or surface, two ligaments of one name, or a footprint on a bone the
+/// config does not give.
+KneeConfig load_knee_config(const std::filesystem::path& file);
+
+} // namespace ligsim::pipeline

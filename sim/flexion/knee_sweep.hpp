@@ -1,0 +1,59 @@
+#pragma once
+/// @brief A knee's ligaments swept together: every ligament a body of its own against the same
+/// femur motion, with contact against every bone of the knee. The ligaments do not touch each
+/// other in the solve, so each is solved on its own (one ligament at a time gives each
+/// ligament's answer); ligament_pairs.hpp measures how close they come.
+
+#include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/knee_model.hpp"
+#include "sim/flexion/knee_motion.hpp"
+#include "sim/flexion/plausibility.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ligsim::sim {
+
+/// The flexion settings of one ligament: `settings` with the ligament's name, failure figures,
+/// material and in-situ strain from knee.json, except what the config or the flags set
+/// (settings.given; a [ligament] table applies to the ligament it names). A one-ligament model
+/// takes `settings` as they are. The bones it meets by contact: the config's, else knee.json's.
+FlexionSettings ligament_settings(const FlexionSettings& settings, const LigamentModel& ligament);
+
+/// The ligaments of `all` that settings.ligaments names (all of them when empty). Throws
+/// InputError naming an unknown ligament, or a [ligament] table naming none of the knee's.
+std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
+                                            const FlexionSettings& settings);
+
+/// One ligament's sweep.
+struct LigamentSweep {
+  std::string name;
+  FlexionSettings settings; ///< its own (ligament_settings)
+  SweepResult result;
+  std::vector<Footprint> footprints;
+  nlohmann::json setup;                              ///< nodes, tets, volume, contact grids
+  nlohmann::json warnings = nlohmann::json::array(); ///< plausibility, per angle
+};
+
+/// Called for each angle each ligament reaches: the ligament's index, its body, the angle and
+/// its positions (flat, mm).
+using KneeAngleCallback = std::function<void(std::size_t ligament, const HyperelasticBody& body,
+                                             const AngleResult& angle, const Eigen::VectorXd& x)>;
+
+/// Sweeps every ligament through `motion`, one after the other; the bones' contact grids are
+/// cached in `contact_cache` (shared by the ligaments). Never throws on divergence: each
+/// ligament's result says where it stopped.
+std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& ligaments,
+                                          const KneeMotion& motion, const FlexionSettings& settings,
+                                          const std::filesystem::path& contact_cache,
+                                          const KneeAngleCallback& on_angle);
+
+/// The knee's frames per second in interactive mode: every ligament's frame in turn, so the
+/// reciprocal of the summed seconds per frame.
+double knee_frames_per_second(const std::vector<LigamentSweep>& sweeps);
+
+} // namespace ligsim::sim

@@ -1,0 +1,59 @@
+#!/bin/bash
+# The four-ligament HRA knee (data/hra-knee/knee.toml) against its MCL alone, side by side: the
+# build of every stage (--force), the quasi-static sweep 0-120 degrees of data/hra-knee/
+# flexion.toml, and the interactive sweep (its frames per second, from summary.json). ROUNDS
+# rounds, each running every job once in turn (interleaved, so all see the same machine load);
+# medians of wall time and peak resident memory (/usr/bin/time), the knee's ratio to the MCL,
+# and the load average before and after. Not a test: run it by hand (several minutes per round;
+# `nice` it on a shared machine).
+#
+#   tests/bench/knee_vs_mcl.sh OUT [ROUNDS]        (default 3 rounds)
+#   LIGSIM=path/to/ligsim (default build/pipeline/ligsim); CONTACT=off sweeps without contact.
+set -euo pipefail
+OUT=$1
+ROUNDS=${2:-3}
+SRC=$(cd "$(dirname "$0")/../.." && pwd)
+LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
+CONTACT=${CONTACT:-on}
+mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
+
+# run NAME COMMAND...: appends "wall_s peak_kib" to OUT/NAME.times
+run() {
+  local name=$1
+  shift
+  /usr/bin/time -f "%e %M" -o "$OUT/$name.time" "$@" > "$OUT/$name.out" 2>&1 ||
+    { echo "knee_vs_mcl.sh: $name failed, see $OUT/$name.out" >&2; exit 1; }
+  cat "$OUT/$name.time" >> "$OUT/$name.times"
+}
+fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['frames_per_second'])" "$1"; }
+
+rm -f "$OUT"/*.times "$OUT"/*.fps
+cd "$SRC"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+for round in $(seq "$ROUNDS"); do
+  run build_knee "$LIGSIM" build --config data/hra-knee/knee.toml --out "$OUT/knee" --force
+  run build_mcl "$LIGSIM" build --config data/hra-knee/mcl-female.toml --out "$OUT/mcl" --force
+  for model in knee mcl; do
+    run "static_$model" "$LIGSIM" flexion --model "$OUT/$model" --out "$OUT/static_$model" \
+      --config data/hra-knee/flexion.toml --contact "$CONTACT" --no-images
+    run "interactive_$model" "$LIGSIM" flexion --model "$OUT/$model" \
+      --out "$OUT/interactive_$model" --config data/hra-knee/flexion.toml --contact "$CONTACT" \
+      --mode interactive --no-images
+    fps "$OUT/interactive_$model/summary.json" >> "$OUT/interactive_$model.fps"
+  done
+done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+printf "| job (contact %s) | knee: wall s | MCL: wall s | knee / MCL | knee: peak MiB | MCL: peak MiB |\n" "$CONTACT"
+printf "| --- | ---: | ---: | ---: | ---: | ---: |\n"
+for job in build static interactive; do
+  kw=$(cut -d' ' -f1 "$OUT/${job}_knee.times" | median)
+  mw=$(cut -d' ' -f1 "$OUT/${job}_mcl.times" | median)
+  km=$(cut -d' ' -f2 "$OUT/${job}_knee.times" | median | awk '{print $1 / 1024}')
+  mm=$(cut -d' ' -f2 "$OUT/${job}_mcl.times" | median | awk '{print $1 / 1024}')
+  printf "| %s | %.1f | %.1f | %.2f | %.0f | %.0f |\n" "$job" "$kw" "$mw" "$(echo "$kw / $mw" | bc -l)" "$km" "$mm"
+done
+printf "| interactive frames per second (median of %d) | %.1f | %.1f | | | |\n" "$ROUNDS" \
+  "$(median < "$OUT/interactive_knee.fps")" "$(median < "$OUT/interactive_mcl.fps")"
