@@ -92,6 +92,8 @@ private:
     bool near = true;
     Eigen::Vector3d sampled_at = Eigen::Vector3d::Constant(INFINITY);
     DistanceSample sample; ///< at `sampled_at`, with the Hessian
+    Eigen::Vector3d bounded_at = Eigen::Vector3d::Constant(INFINITY);
+    double bound_mm = 0.0; ///< the field's lower bound at `bounded_at`
   };
   Pose pose(std::size_t o, double t) const;
   /// The distance added to obstacle o's field at load factor t (its start offset, ramped down).
@@ -105,6 +107,12 @@ private:
   /// farther than d_hat + slack is not looked up again until it moved by slack / 2 relative to
   /// the obstacle: the cheap cull that makes far nodes cost a subtraction.
   bool maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+  /// Whether pair i of obstacle o at local point p is farther than `distance_mm` by the field's
+  /// cheap lower bound plus `offset_mm` (cached per point): beyond d_hat its barrier and
+  /// derivatives are zero, beyond 0 it is outside, and no sample is needed (most near pairs of a
+  /// sweep lie between d_hat and d_hat + slack).
+  bool surely_beyond(std::size_t o, std::size_t i, const Eigen::Vector3d& p, double offset_mm,
+                     double distance_mm) const;
   /// The field at local point p for pair i of obstacle o, reused when p has not moved (energy,
   /// gradient and Hessian of one state sample once).
   const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
