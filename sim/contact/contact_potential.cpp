@@ -174,8 +174,8 @@ double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::Vecto
   return finite ? total : INFINITY;
 }
 
-void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool project,
-                                     std::vector<NodeBlock>& blocks) const
+void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
+                                      std::vector<NodeBlock>& blocks) const
 {
   const double kappa = m_settings.stiffness_mpa_per_mm;
   for_each_near_pair(
@@ -188,17 +188,11 @@ void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool pr
         block.block = kappa * pair.area *
                       (b.second * g * g.transpose() +
                        b.first * (at.rotation * s.hessian * at.rotation.transpose()));
-        if (project)
+        if (projected)
           project_to_psd(block.block);
         blocks.push_back(block);
         return true;
       });
-}
-
-void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t,
-                                      std::vector<NodeBlock>& blocks) const
-{
-  node_hessians(x, t, true, blocks);
 }
 
 double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx,

@@ -2,8 +2,8 @@
 /// @brief Ligament-bone contact as an IPC barrier (Li et al. 2020) on the surface nodes:
 /// E = kappa sum_o sum_i a_i b(d_o(x_i, t)), b(d) = -(d - d_hat)^2 ln(d / d_hat) for d < d_hat,
 /// with d_o the signed distance to obstacle o in its pose at load factor t and a_i the node's
-/// area. Exact gradient; Hessian blocks kappa a_i (b'' g g^T + b' R H R^T), projected to positive
-/// semi-definite for the solvers.
+/// area. Exact gradient; Hessian blocks kappa a_i (b'' g g^T + b' R H R^T), exact or projected to
+/// positive semi-definite (b' < 0: a convex obstacle's curvature H makes them indefinite).
 
 #include "sim/contact/contact_surface.hpp"
 #include "sim/contact/distance_field.hpp"
@@ -56,14 +56,11 @@ public:
                    std::vector<ContactObstacle> obstacles, const ContactSettings& settings);
 
   double energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const override;
-  void hessian_blocks(const Eigen::VectorXd& x, double t,
+  void hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
                       std::vector<NodeBlock>& blocks) const override;
   double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx, double t) const override;
   int make_admissible(Eigen::VectorXd& x, double t) const override;
 
-  /// The blocks, optionally unprojected (the exact Hessian, for tests).
-  void node_hessians(const Eigen::VectorXd& x, double t, bool project,
-                     std::vector<NodeBlock>& blocks) const;
   ContactMeasures measure(const Eigen::VectorXd& x, double t) const;
 
   const ContactSettings& settings() const { return m_settings; }

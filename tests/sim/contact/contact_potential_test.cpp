@@ -68,7 +68,7 @@ void expect_exact_derivatives(const DistanceField& field, double tolerance)
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(3 * n);
   ASSERT_TRUE(std::isfinite(contact.energy(x, t, &gradient)));
   std::vector<NodeBlock> blocks;
-  contact.node_hessians(x, t, false, blocks);
+  contact.hessian_blocks(x, t, false, blocks);
   ASSERT_EQ(blocks.size(), static_cast<std::size_t>(n));
   const double h = 1e-6;
   for (const NodeBlock& block : blocks) {
@@ -88,7 +88,7 @@ void expect_exact_derivatives(const DistanceField& field, double tolerance)
   }
   // The solvers' blocks are the projections: symmetric positive semi-definite.
   std::vector<NodeBlock> projected;
-  contact.hessian_blocks(x, t, projected);
+  contact.hessian_blocks(x, t, true, projected);
   for (const NodeBlock& block : projected) {
     EXPECT_LT((block.block - block.block.transpose()).norm(), 1e-12 * block.block.norm());
     EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block.block).eigenvalues().minCoeff(),
@@ -143,7 +143,7 @@ TEST(ContactPotential, CullingChangesNoEnergyGradientOrHessian)
     Eigen::VectorXd gradient = Eigen::VectorXd::Zero(3 * n);
     const double energy = contact.energy(x, t, &gradient);
     std::vector<NodeBlock> blocks;
-    contact.node_hessians(x, t, false, blocks);
+    contact.hessian_blocks(x, t, false, blocks);
     double expected = 0.0;
     Eigen::VectorXd expected_gradient = Eigen::VectorXd::Zero(3 * n);
     std::vector<NodeBlock> expected_blocks;
