@@ -208,4 +208,9 @@ double BoneLevelSet::distance_bound(const Eigen::Vector3d& p_mm) const
   return m_grid->grid->tree().getValue(nearest) - 2.0 * m_voxel_mm;
 }
 
+double BoneLevelSet::bound_limit_mm() const
+{
+  return m_grid->grid->background() - 2.0 * m_voxel_mm;
+}
+
 } // namespace ligsim::sim

@@ -39,6 +39,8 @@ public:
   DistanceSample sample(const Eigen::Vector3d& p_mm, bool with_hessian) const override;
   /// The value of the nearest voxel minus two voxels: a cheap lower bound of sample().
   double distance_bound(const Eigen::Vector3d& p_mm) const override;
+  /// The grid's background (beyond its band) minus two voxels.
+  double bound_limit_mm() const override;
   Eigen::AlignedBox3d near_box() const override { return m_box; }
   double band_mm() const { return m_band_mm; }
   const LevelSetFigures& figures() const { return m_figures; }

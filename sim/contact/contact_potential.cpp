@@ -66,7 +66,16 @@ ContactPotential::ContactPotential(int node_count, const ContactSurface& surface
     m_state.emplace_back(pairs.size());
     m_pairs.push_back(std::move(pairs));
   }
+  // A pair is culled once its distance bound exceeds d_hat + slack; a grid's bound stops at its
+  // band, so the slack must leave room below that or nothing would ever be culled.
   m_slack_mm = settings.d_hat_mm;
+  for (const ContactObstacle& obstacle : m_obstacles) {
+    const double room = obstacle.field->bound_limit_mm() - settings.d_hat_mm;
+    if (!(room > 0.0))
+      fail("contact: obstacle \"{}\": its distance band ({} mm) must reach beyond d_hat ({} mm)",
+           obstacle.name, obstacle.field->bound_limit_mm(), settings.d_hat_mm);
+    m_slack_mm = std::min(m_slack_mm, 0.9 * room);
+  }
 }
 
 ContactPotential::Pose ContactPotential::pose(std::size_t o, double t) const
@@ -100,6 +109,17 @@ bool ContactPotential::maybe_near(std::size_t o, std::size_t i, const Eigen::Vec
   return state.near;
 }
 
+bool ContactPotential::surely_beyond(std::size_t o, std::size_t i, const Eigen::Vector3d& p,
+                                     double offset_mm, double distance_mm) const
+{
+  PairState& state = m_state[o][i];
+  if (p != state.bounded_at) {
+    state.bound_mm = m_obstacles[o].field->distance_bound(p);
+    state.bounded_at = p;
+  }
+  return state.bound_mm + offset_mm > distance_mm;
+}
+
 const DistanceSample& ContactPotential::pair_sample(std::size_t o, std::size_t i,
                                                     const Eigen::Vector3d& p) const
 {
@@ -126,7 +146,8 @@ bool ContactPotential::for_each_near_pair(const Eigen::VectorXd& x, double t, Vi
       const Pair& pair = m_pairs[o][i];
       const Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
       // The near test is on the field itself: an offset (>= 0) only moves nodes farther.
-      if (!maybe_near(o, i, p))
+      // The barrier is zero from d_hat on.
+      if (!maybe_near(o, i, p) || surely_beyond(o, i, p, off, m_settings.d_hat_mm))
         continue;
       const DistanceSample& s = pair_sample(o, i, p);
       if (!visit(pair, at, s, ipc_barrier(s.distance_mm + off, m_settings.d_hat_mm)))
@@ -153,8 +174,8 @@ double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::Vecto
   return finite ? total : INFINITY;
 }
 
-void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool project,
-                                     std::vector<NodeBlock>& blocks) const
+void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
+                                      std::vector<NodeBlock>& blocks) const
 {
   const double kappa = m_settings.stiffness_mpa_per_mm;
   for_each_near_pair(
@@ -167,17 +188,11 @@ void ContactPotential::node_hessians(const Eigen::VectorXd& x, double t, bool pr
         block.block = kappa * pair.area *
                       (b.second * g * g.transpose() +
                        b.first * (at.rotation * s.hessian * at.rotation.transpose()));
-        if (project)
+        if (projected)
           project_to_psd(block.block);
         blocks.push_back(block);
         return true;
       });
-}
-
-void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t,
-                                      std::vector<NodeBlock>& blocks) const
-{
-  node_hessians(x, t, true, blocks);
 }
 
 double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx,
@@ -201,7 +216,8 @@ double ContactPotential::max_step(const Eigen::VectorXd& x, const Eigen::VectorX
       // Far enough to move the whole step: no sample needed.
       if (length <= closing_fraction * far_gap && !maybe_near(o, i, p0))
         continue;
-      if (surely_farther(o, p0, length / closing_fraction))
+      if (surely_beyond(o, i, p0, 0.0, length / closing_fraction) ||
+          surely_farther(o, p0, length / closing_fraction))
         continue;
       const double d0 = pair_sample(o, i, p0).distance_mm + off;
       const double keep = (1.0 - closing_fraction) * d0; // the gap never closes below this
@@ -241,7 +257,7 @@ int ContactPotential::make_admissible(Eigen::VectorXd& x, double t) const
     for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
       const Pair& pair = m_pairs[o][i];
       Eigen::Vector3d p = at.to_local(x.segment<3>(3 * pair.node));
-      if (!maybe_near(o, i, p))
+      if (!maybe_near(o, i, p) || surely_beyond(o, i, p, off, 0.0))
         continue;
       DistanceSample s = pair_sample(o, i, p);
       if (s.distance_mm + off > 0.0)

@@ -2,8 +2,8 @@
 /// @brief Ligament-bone contact as an IPC barrier (Li et al. 2020) on the surface nodes:
 /// E = kappa sum_o sum_i a_i b(d_o(x_i, t)), b(d) = -(d - d_hat)^2 ln(d / d_hat) for d < d_hat,
 /// with d_o the signed distance to obstacle o in its pose at load factor t and a_i the node's
-/// area. Exact gradient; Hessian blocks kappa a_i (b'' g g^T + b' R H R^T), projected to positive
-/// semi-definite for the solvers.
+/// area. Exact gradient; Hessian blocks kappa a_i (b'' g g^T + b' R H R^T), exact or projected to
+/// positive semi-definite (b' < 0: a convex obstacle's curvature H makes them indefinite).
 
 #include "sim/contact/contact_surface.hpp"
 #include "sim/contact/distance_field.hpp"
@@ -56,14 +56,11 @@ public:
                    std::vector<ContactObstacle> obstacles, const ContactSettings& settings);
 
   double energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const override;
-  void hessian_blocks(const Eigen::VectorXd& x, double t,
+  void hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
                       std::vector<NodeBlock>& blocks) const override;
   double max_step(const Eigen::VectorXd& x, const Eigen::VectorXd& dx, double t) const override;
   int make_admissible(Eigen::VectorXd& x, double t) const override;
 
-  /// The blocks, optionally unprojected (the exact Hessian, for tests).
-  void node_hessians(const Eigen::VectorXd& x, double t, bool project,
-                     std::vector<NodeBlock>& blocks) const;
   ContactMeasures measure(const Eigen::VectorXd& x, double t) const;
 
   const ContactSettings& settings() const { return m_settings; }
@@ -92,6 +89,8 @@ private:
     bool near = true;
     Eigen::Vector3d sampled_at = Eigen::Vector3d::Constant(INFINITY);
     DistanceSample sample; ///< at `sampled_at`, with the Hessian
+    Eigen::Vector3d bounded_at = Eigen::Vector3d::Constant(INFINITY);
+    double bound_mm = 0.0; ///< the field's lower bound at `bounded_at`
   };
   Pose pose(std::size_t o, double t) const;
   /// The distance added to obstacle o's field at load factor t (its start offset, ramped down).
@@ -105,6 +104,12 @@ private:
   /// farther than d_hat + slack is not looked up again until it moved by slack / 2 relative to
   /// the obstacle: the cheap cull that makes far nodes cost a subtraction.
   bool maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
+  /// Whether pair i of obstacle o at local point p is farther than `distance_mm` by the field's
+  /// cheap lower bound plus `offset_mm` (cached per point): beyond d_hat its barrier and
+  /// derivatives are zero, beyond 0 it is outside, and no sample is needed (most near pairs of a
+  /// sweep lie between d_hat and d_hat + slack).
+  bool surely_beyond(std::size_t o, std::size_t i, const Eigen::Vector3d& p, double offset_mm,
+                     double distance_mm) const;
   /// The field at local point p for pair i of obstacle o, reused when p has not moved (energy,
   /// gradient and Hessian of one state sample once).
   const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;

@@ -5,6 +5,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 namespace ligsim::sim {
 
 struct DistanceSample {
@@ -23,6 +25,8 @@ public:
   {
     return sample(p_mm, false).distance_mm;
   }
+  /// The largest value distance_bound() gives (the grid's band): farther is never told apart.
+  virtual double bound_limit_mm() const { return INFINITY; }
   /// The box outside which every point is at least `far_mm` away (the grid's band), so that
   /// points outside it need no sample. Empty: no such box (analytic shapes).
   virtual Eigen::AlignedBox3d near_box() const { return {}; }

@@ -25,8 +25,10 @@ public:
   /// it is not null (a vector of the full DOF length).
   virtual double energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const = 0;
 
-  /// Hessian blocks at (x, t), each positive semi-definite.
-  virtual void hessian_blocks(const Eigen::VectorXd& x, double t,
+  /// Hessian blocks at (x, t): each projected to positive semi-definite (`projected`), or the
+  /// exact ones (which may be indefinite; where the whole matrix stays definite with them,
+  /// Newton converges quadratically).
+  virtual void hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
                               std::vector<NodeBlock>& blocks) const = 0;
 
   /// The largest fraction in [0, 1] of the move x -> x + dx (t fixed) along which the state stays

@@ -68,7 +68,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     m_extra->make_admissible(x, t);
   std::vector<NodeBlock> blocks;
   if (m_extra)
-    m_extra->hessian_blocks(x, t, blocks);
+    m_extra->hessian_blocks(x, t, true, blocks);
 
   // (M (1 + h alpha) + (h^2 + h beta) K) dv = h f - h (h + beta) K v - h alpha M v
   //                                         = h f - (A v - M v).

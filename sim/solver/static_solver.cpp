@@ -154,9 +154,12 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
 {
   saddle = false;
   bool project = m_settings.projection == PsdProjection::always;
+  // The extra potential's exact Hessian first: a contact barrier's projected Hessian drops the
+  // obstacle's curvature, and Newton converges only linearly on nodes that slide over it.
+  bool exact_extra = m_extra && !project;
   std::vector<NodeBlock> blocks;
   if (m_extra)
-    m_extra->hessian_blocks(x, t, blocks);
+    m_extra->hessian_blocks(x, t, !exact_extra, blocks);
   for (;;) {
     report.projected_elements += m_linear.prepare(x, project, 1.0, Eigen::VectorXd(), blocks);
     direction = Eigen::VectorXd::Zero(rhs.size());
@@ -167,6 +170,14 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
     const bool downhill = solve.ok && direction.allFinite() && direction.dot(rhs) > 0.0;
     if (downhill)
       return true;
+    if (exact_extra && (solve.indefinite || solve.ok)) {
+      // Indefinite with the exact extra Hessian: its projection next, then the elements'.
+      ++report.projected_extra_iterations;
+      exact_extra = false;
+      blocks.clear();
+      m_extra->hessian_blocks(x, t, true, blocks);
+      continue;
+    }
     if (!project && m_settings.projection == PsdProjection::automatic &&
         (solve.indefinite || solve.ok)) {
       ++report.indefinite_iterations;
@@ -475,6 +486,9 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
         consecutive_cutbacks = 0;
         continue;
       }
+      if (m_settings.verbose)
+        log_info(fmt::format("load {:.4g}: sub-step from {:.4g} failed, cut back: {}", t_next, t,
+                             m_failure));
       x = saved;
       report.converged_at_floor = floor_before;
       ++report.cutbacks;

@@ -34,6 +34,27 @@ TEST(BoneLevelSet, DistanceOfASphereWithinTheBand)
   EXPECT_LT(grid.sample(centre, false).distance_mm, 0.0); // deep inside: negative background
 }
 
+TEST(BoneLevelSet, DistanceBoundIsALowerBoundUpToItsLimit)
+{
+  // The contact's cull skips every pair whose bound lies beyond d_hat: the bound must never
+  // exceed the sampled distance, inside, within or beyond the band.
+  const Eigen::Vector3d centre(0.3, -0.2, 0.1);
+  const BoneLevelSet grid(sphere_surface(centre, 3.0, 4), {0.2, 1.0});
+  std::mt19937 random(2);
+  std::uniform_real_distribution<double> offset(-2.0, 3.0);
+  double highest = -INFINITY;
+  for (int i = 0; i < 5000; ++i) {
+    const Eigen::Vector3d p =
+        centre + (3.0 + offset(random)) * Eigen::Vector3d::Random().normalized();
+    const double bound = grid.distance_bound(p);
+    ASSERT_LE(bound, grid.sample(p, false).distance_mm) << p.transpose();
+    highest = std::max(highest, bound);
+  }
+  EXPECT_LE(highest, grid.bound_limit_mm());
+  EXPECT_GE(highest, grid.bound_limit_mm() - 1e-6); // reached beyond the band
+  EXPECT_GE(grid.bound_limit_mm(), 1.0 - 1e-6);     // at least the band (float grid)
+}
+
 TEST(BoneLevelSet, CacheIsReusedForTheSameSurfaceAndRebuiltOtherwise)
 {
   const std::filesystem::path dir =

@@ -1,3 +1,5 @@
+#include "common/error.hpp"
+#include "sim/contact/barrier.hpp"
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/contact_potential.hpp"
 
@@ -66,7 +68,7 @@ void expect_exact_derivatives(const DistanceField& field, double tolerance)
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(3 * n);
   ASSERT_TRUE(std::isfinite(contact.energy(x, t, &gradient)));
   std::vector<NodeBlock> blocks;
-  contact.node_hessians(x, t, false, blocks);
+  contact.hessian_blocks(x, t, false, blocks);
   ASSERT_EQ(blocks.size(), static_cast<std::size_t>(n));
   const double h = 1e-6;
   for (const NodeBlock& block : blocks) {
@@ -86,7 +88,7 @@ void expect_exact_derivatives(const DistanceField& field, double tolerance)
   }
   // The solvers' blocks are the projections: symmetric positive semi-definite.
   std::vector<NodeBlock> projected;
-  contact.hessian_blocks(x, t, projected);
+  contact.hessian_blocks(x, t, true, projected);
   for (const NodeBlock& block : projected) {
     EXPECT_LT((block.block - block.block.transpose()).norm(), 1e-12 * block.block.norm());
     EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(block.block).eigenvalues().minCoeff(),
@@ -106,6 +108,83 @@ TEST(ContactPotential, ExactGradientAndHessianOnALevelSet)
 {
   const BoneLevelSet sphere(sphere_surface({0.2, 0.1, -0.3}, 2.5, 4), {0.2, 1.0});
   expect_exact_derivatives(sphere, 1e-5);
+}
+
+TEST(ContactPotential, CullingChangesNoEnergyGradientOrHessian)
+{
+  // Nodes from inside d_hat to beyond the band, d_hat close to the band (where the cull's slack
+  // must shrink to fit it), moved in small steps as a sweep moves them: the potential equals the
+  // barrier summed over every node from a fresh sample (to round-off: the test poses the nodes
+  // its own way).
+  const BoneLevelSet sphere(sphere_surface({0.2, 0.1, -0.3}, 2.5, 4), {0.2, 1.0});
+  ContactSettings settings;
+  settings.d_hat_mm = 0.8;
+  settings.stiffness_mpa_per_mm = 7.0;
+  const int n = 400;
+  ContactSurface surface;
+  for (int i = 0; i < n; ++i)
+    surface.nodes.push_back(i);
+  surface.areas_mm2 = Eigen::VectorXd::LinSpaced(n, 0.5, 1.5);
+  const RigidMotion motion = turning();
+  const ContactPotential contact(n, surface, {{"sphere", &sphere, motion, {}}}, settings);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> gap(0.3, 2.5);
+  Eigen::VectorXd x(3 * n);
+  const double t0 = 0.3;
+  const Eigen::Isometry3d pose = motion.pose(t0);
+  for (int i = 0; i < n; ++i)
+    x.segment<3>(3 * i) = pose * (Eigen::Vector3d(0.2, 0.1, -0.3) +
+                                  (2.5 + gap(random)) * Eigen::Vector3d::Random().normalized());
+  const Eigen::VectorXd drift = 0.005 * Eigen::VectorXd::Random(3 * n);
+  int touching = 0;
+  for (int step = 0; step < 30; ++step) {
+    const double t = t0 + 0.001 * step;
+    x += drift;
+    Eigen::VectorXd gradient = Eigen::VectorXd::Zero(3 * n);
+    const double energy = contact.energy(x, t, &gradient);
+    std::vector<NodeBlock> blocks;
+    contact.hessian_blocks(x, t, false, blocks);
+    double expected = 0.0;
+    Eigen::VectorXd expected_gradient = Eigen::VectorXd::Zero(3 * n);
+    std::vector<NodeBlock> expected_blocks;
+    const Eigen::Isometry3d at = motion.pose(t);
+    const Eigen::Matrix3d rotation = at.linear();
+    for (int i = 0; i < n; ++i) {
+      const DistanceSample s =
+          sphere.sample(at.inverse() * Eigen::Vector3d(x.segment<3>(3 * i)), true);
+      const BarrierValue b = ipc_barrier(s.distance_mm, settings.d_hat_mm);
+      const double area = surface.areas_mm2(i);
+      expected += settings.stiffness_mpa_per_mm * area * b.value;
+      if (b.first == 0.0 && b.second == 0.0)
+        continue;
+      const Eigen::Vector3d g = rotation * s.gradient;
+      expected_gradient.segment<3>(3 * i) = settings.stiffness_mpa_per_mm * area * b.first * g;
+      expected_blocks.push_back({i, settings.stiffness_mpa_per_mm * area *
+                                        (b.second * g * g.transpose() +
+                                         b.first * (rotation * s.hessian * rotation.transpose()))});
+    }
+    EXPECT_NEAR(energy, expected, 1e-12 * std::abs(expected));
+    EXPECT_LE((gradient - expected_gradient).norm(), 1e-12 * expected_gradient.norm());
+    ASSERT_EQ(blocks.size(), expected_blocks.size()) << "step " << step;
+    double largest = 0.0;
+    for (const NodeBlock& block : expected_blocks)
+      largest = std::max(largest, block.block.norm());
+    for (std::size_t k = 0; k < blocks.size(); ++k) {
+      EXPECT_EQ(blocks[k].node, expected_blocks[k].node);
+      EXPECT_LE((blocks[k].block - expected_blocks[k].block).norm(), 1e-12 * largest);
+    }
+    touching += static_cast<int>(blocks.size());
+  }
+  EXPECT_GT(touching, 30 * n / 10); // the case has nodes within d_hat
+}
+
+TEST(ContactPotential, ADHatBeyondTheGridsBandIsAnError)
+{
+  const BoneLevelSet sphere(sphere_surface({0.0, 0.0, 0.0}, 2.5, 3), {0.2, 1.0});
+  ContactSettings settings;
+  settings.d_hat_mm = 1.5;
+  EXPECT_THROW(ContactPotential(2, two_nodes(), {{"sphere", &sphere, std::nullopt, {}}}, settings),
+               ligsim::InputError);
 }
 
 TEST(ContactPotential, StepBoundStopsShortOfTheSurface)

@@ -86,7 +86,7 @@ public:
     }
     return energy;
   }
-  void hessian_blocks(const Eigen::VectorXd& x, double,
+  void hessian_blocks(const Eigen::VectorXd& x, double, bool,
                       std::vector<NodeBlock>& blocks) const override
   {
     Eigen::SparseMatrix<double> K;
