@@ -282,8 +282,10 @@ void run_flexion(const FlexionJobOptions& options)
     results["ligaments"][sweep.name] = ligament_results(sweep);
   if (ligaments.size() > 1)
     results["pairs"] = sim::pairs_over_sweep(ligaments, states, options.out);
-  else // a one-ligament model: its results at the top, as before knees
+  else { // a one-ligament model: its results at the top, and its setup, as before knees
     results.update(results["ligaments"][sweeps.front().name]);
+    summary.stage("setup").update(sweeps.front().setup);
+  }
   results["success"] = success;
   if (settings.mode == sim::FlexionMode::interactive)
     results["frames_per_second"] = sim::knee_frames_per_second(sweeps);
