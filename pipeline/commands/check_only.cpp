@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/knee_config.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/membrane/scene/scene.hpp"
@@ -42,12 +43,24 @@ void check_input_file(const fs::path& file, const std::string& config)
     fail("{}: the file '{}' it names does not exist", config, on_disk.string());
 }
 
-void check_build_config(const std::string& file)
+void check_inputs(const pipeline::BuildConfig& config, const std::string& file)
 {
-  const pipeline::BuildConfig config = pipeline::load_build_config(file);
   for (const fs::path* input :
        {&config.surface, &config.femur, &config.tibia, &config.labels, &config.colour_table})
     check_input_file(*input, file);
+}
+
+/// One ligament's config, or a knee's (every ligament's inputs and the fibula).
+void check_build_config(const std::string& file)
+{
+  if (!pipeline::is_knee_config(file)) {
+    check_inputs(pipeline::load_build_config(file), file);
+    return;
+  }
+  const pipeline::KneeConfig knee = pipeline::load_knee_config(file);
+  check_input_file(knee.fibula, file);
+  for (const pipeline::LigamentConfig& ligament : knee.ligaments)
+    check_inputs(ligament.build, file);
 }
 
 /// Loads every config and scene file the command names, with the reader the job would use.

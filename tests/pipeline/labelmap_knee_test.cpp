@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// flexion.csv as one map of column to value per row.
+/// flexion.csv as one map of column to value per row (a text cell, the ligament's name, as NaN).
 std::vector<std::map<std::string, double>> read_table(const fs::path& file)
 {
   std::ifstream in(file);
@@ -32,7 +33,9 @@ std::vector<std::map<std::string, double>> read_table(const fs::path& file)
     for (const std::string& column : header) {
       std::string cell;
       std::getline(cells, cell, ',');
-      row[column] = cell.empty() ? NAN : std::stod(cell);
+      char* end = nullptr;
+      const double value = std::strtod(cell.c_str(), &end);
+      row[column] = !cell.empty() && *end == '\0' ? value : NAN;
     }
     rows.push_back(row);
   }
