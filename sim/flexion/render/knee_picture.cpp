@@ -1,6 +1,7 @@
 #include "sim/flexion/render/knee_picture.hpp"
 
 #include "common/error.hpp"
+#include "sim/flexion/render/picture_parts.hpp"
 #include "sim/flexion/render/window_png.hpp"
 
 #include <Eigen/Geometry>
@@ -74,17 +75,6 @@ vtkSmartPointer<vtkColorTransferFunction> strain_colours(double low, double high
   return colours;
 }
 
-void check_camera(const PictureCamera& camera)
-{
-  if (!camera.focal_point_mm.allFinite() || !camera.view_direction.allFinite() ||
-      !(camera.view_direction.norm() > 0.0) || !camera.up.allFinite() ||
-      !(camera.up.cross(camera.view_direction.normalized()).norm() > 1e-6 * camera.up.norm()))
-    fail("the knee picture's camera needs a finite focal point, a view direction and an up "
-         "direction across it");
-  if (!(camera.view_height_mm > 0.0) || !std::isfinite(camera.view_height_mm))
-    fail("the knee picture's view height must be positive, got {} mm", camera.view_height_mm);
-}
-
 } // namespace
 
 double fiber_strain_percentile(const std::vector<vtkUnstructuredGrid*>& ligaments, double fraction)
@@ -125,10 +115,7 @@ void render_knee_png(const KneePicture& picture, const PictureCamera& camera,
 
   vtkNew<vtkRenderWindow> window;
   prepare_offscreen_window(window, picture.width, picture.height);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(1.0, 1.0, 1.0);
-  renderer->UseFXAAOn();
-  window->AddRenderer(renderer);
+  const vtkSmartPointer<vtkRenderer> renderer = add_white_renderer(window);
 
   const auto colours = strain_colours(picture.strain_min, picture.strain_max);
   const int font = std::max(10, picture.height / 40);
@@ -184,53 +171,10 @@ void render_knee_png(const KneePicture& picture, const PictureCamera& camera,
   for (std::size_t i = 0; i < picture.bones.size(); ++i) {
     if (!picture.bones[i])
       fail("bone surface {} to draw in '{}' is missing", i, png.string());
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputData(picture.bones[i]);
-    normals->SetFeatureAngle(60.0);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(normals->GetOutputPort());
-    mapper->ScalarVisibilityOff();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(kBoneColour.x(), kBoneColour.y(), kBoneColour.z());
-    actor->GetProperty()->SetOpacity(picture.bone_opacity);
-    actor->GetProperty()->SetAmbient(0.3);
-    actor->GetProperty()->SetDiffuse(0.7);
-    renderer->AddActor(actor);
+    add_bone(renderer, picture.bones[i], picture.bone_opacity);
   }
-
-  vtkNew<vtkScalarBarActor> scale;
-  scale->SetLookupTable(colours);
-  scale->SetTitle("fiber strain\n(stretch - 1)");
-  scale->SetNumberOfLabels(5);
-  scale->SetLabelFormat("%.3g");
-  scale->SetPosition(0.82, 0.06);
-  scale->SetWidth(0.16);
-  scale->SetHeight(0.84);
-  scale->SetBarRatio(0.25);
-  scale->SetVerticalTitleSeparation(font / 2);
-  scale->UnconstrainedFontSizeOn();
-  scale->DrawBackgroundOn();
-  scale->GetBackgroundProperty()->SetColor(1.0, 1.0, 1.0);
-  scale->GetBackgroundProperty()->SetOpacity(0.85);
-  for (vtkTextProperty* text : {scale->GetTitleTextProperty(), scale->GetLabelTextProperty()}) {
-    text->SetColor(0.0, 0.0, 0.0);
-    text->SetFontSize(font);
-    text->BoldOff();
-    text->ItalicOff();
-    text->ShadowOff();
-  }
-  renderer->AddViewProp(scale);
-
-  vtkNew<vtkTextActor> caption;
-  if (!picture.caption.empty()) {
-    caption->SetInput(picture.caption.c_str());
-    caption->GetTextProperty()->SetColor(0.0, 0.0, 0.0);
-    caption->GetTextProperty()->SetFontSize(std::max(12, picture.height / 28));
-    caption->GetTextProperty()->SetVerticalJustificationToTop();
-    caption->SetDisplayPosition(picture.height / 60, picture.height - picture.height / 60);
-    renderer->AddViewProp(caption);
-  }
+  add_scale_bar(renderer, colours, "fiber strain\n(stretch - 1)", font, 0.82, 0.16);
+  add_caption(renderer, picture.caption, picture.height);
 
   place_parallel_camera(renderer, camera);
   write_window_png(window, png);

@@ -1,6 +1,7 @@
 #include "sim/flexion/render/ligament_picture.hpp"
 
 #include "common/error.hpp"
+#include "sim/flexion/render/picture_parts.hpp"
 #include "sim/flexion/render/window_png.hpp"
 
 #include <Eigen/Geometry>
@@ -59,19 +60,6 @@ vtkDataArray* cell_array(vtkUnstructuredGrid* grid, const char* name, int compon
     fail("the ligament to draw needs cell data '{}' with {} component(s) per cell", name,
          components);
   return array;
-}
-
-void check_camera(const PictureCamera& camera)
-{
-  const double along = camera.view_direction.norm();
-  if (!camera.focal_point_mm.allFinite() || !camera.view_direction.allFinite() ||
-      !camera.up.allFinite() || !(along > 0.0))
-    fail("the picture's camera needs a finite focal point and a non-zero view direction");
-  if (!(camera.up.cross(camera.view_direction / along).norm() > 1e-6 * camera.up.norm()))
-    fail("the picture's up direction [{}, {}, {}] is zero or along the view direction",
-         camera.up.x(), camera.up.y(), camera.up.z());
-  if (!(camera.view_height_mm > 0.0) || !std::isfinite(camera.view_height_mm))
-    fail("the picture's view height must be positive, got {} mm", camera.view_height_mm);
 }
 
 /// Mean distance between the points of a cell, over all cells: the mean edge for tets.
@@ -288,10 +276,7 @@ void render_ligament_png(const LigamentPicture& picture, const PictureCamera& ca
 
   vtkNew<vtkRenderWindow> window;
   prepare_offscreen_window(window, picture.width, picture.height);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(1.0, 1.0, 1.0);
-  renderer->UseFXAAOn();
-  window->AddRenderer(renderer);
+  const vtkSmartPointer<vtkRenderer> renderer = add_white_renderer(window);
 
   // The ligament's outer surface, coloured per cell.
   vtkNew<vtkDataSetSurfaceFilter> surface;
@@ -361,57 +346,15 @@ void render_ligament_png(const LigamentPicture& picture, const PictureCamera& ca
   for (size_t i = 0; i < picture.bones.size(); ++i) {
     if (!picture.bones[i])
       fail("bone surface {} to draw in '{}' is missing", i, png.string());
-    vtkNew<vtkPolyDataNormals> bone_normals;
-    bone_normals->SetInputData(picture.bones[i]);
-    bone_normals->SetFeatureAngle(60.0);
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(bone_normals->GetOutputPort());
-    mapper->ScalarVisibilityOff();
-    auto actor = vtkSmartPointer<vtkActor>::New();
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(kBoneColour.x(), kBoneColour.y(), kBoneColour.z());
-    actor->GetProperty()->SetOpacity(picture.bone_opacity);
-    actor->GetProperty()->SetAmbient(0.3);
-    actor->GetProperty()->SetDiffuse(0.7);
-    renderer->AddActor(actor);
-    bones.push_back(actor);
+    bones.push_back(add_bone(renderer, picture.bones[i], picture.bone_opacity));
   }
 
   // Colour scale and caption.
   const int font = std::max(10, picture.height / 40);
-  vtkNew<vtkScalarBarActor> scale;
-  scale->SetLookupTable(colours);
-  scale->SetTitle("strain energy density\n(MPa = mJ/mm^3)");
-  scale->SetNumberOfLabels(5);
-  scale->SetLabelFormat("%.3g");
-  scale->SetPosition(0.80, 0.06);
-  scale->SetWidth(0.18);
-  scale->SetHeight(0.84);
-  scale->SetBarRatio(0.25);
-  scale->SetVerticalTitleSeparation(font / 2);
-  scale->UnconstrainedFontSizeOn();
-  scale->DrawBackgroundOn(); // legible where the bar overlaps the scene
-  scale->GetBackgroundProperty()->SetColor(1.0, 1.0, 1.0);
-  scale->GetBackgroundProperty()->SetOpacity(0.85);
-  for (vtkTextProperty* text : {scale->GetTitleTextProperty(), scale->GetLabelTextProperty()}) {
-    text->SetColor(0.0, 0.0, 0.0);
-    text->SetFontSize(font);
-    text->BoldOff();
-    text->ItalicOff();
-    text->ShadowOff();
-  }
+  const auto scale =
+      add_scale_bar(renderer, colours, "strain energy density\n(MPa = mJ/mm^3)", font, 0.80, 0.18);
   scale->GetTitleTextProperty()->SetFontSize(font - font / 6);
-  renderer->AddViewProp(scale);
-
-  vtkNew<vtkTextActor> caption;
-  if (!picture.caption.empty()) {
-    caption->SetInput(picture.caption.c_str());
-    caption->GetTextProperty()->SetColor(0.0, 0.0, 0.0);
-    caption->GetTextProperty()->SetFontSize(std::max(12, picture.height / 28));
-    caption->GetTextProperty()->SetVerticalJustificationToTop();
-    caption->SetDisplayPosition(picture.height / 60, picture.height - picture.height / 60);
-    renderer->AddViewProp(caption);
-  }
+  add_caption(renderer, picture.caption, picture.height);
 
   place_parallel_camera(renderer, camera);
   write_window_png(window, png);
