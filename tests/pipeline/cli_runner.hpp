@@ -1,13 +1,16 @@
 #pragma once
-/// Runs the built `ligsim` binary as a user would, capturing its exit code and stderr.
+/// Runs the built `ligsim` binary as a user would, capturing its exit code and stderr, and reads
+/// what it wrote.
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace ligsim::test {
 
@@ -44,6 +47,22 @@ inline std::filesystem::path fresh_folder(const std::string& name)
 inline std::filesystem::path source_path(const std::string& relative)
 {
   return std::filesystem::path(LIGSIM_SOURCE_DIR) / relative;
+}
+
+inline nlohmann::json read_json(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+/// The lines of a text file (a CSV table, a log).
+inline std::vector<std::string> lines(const std::filesystem::path& file)
+{
+  std::ifstream in(file);
+  std::vector<std::string> result;
+  for (std::string line; std::getline(in, line);)
+    result.push_back(line);
+  return result;
 }
 
 } // namespace ligsim::test

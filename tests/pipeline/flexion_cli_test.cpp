@@ -23,21 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json read_json(const fs::path& file)
-{
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-std::vector<std::string> lines(const fs::path& file)
-{
-  std::ifstream in(file);
-  std::vector<std::string> result;
-  for (std::string line; std::getline(in, line);)
-    result.push_back(line);
-  return result;
-}
-
 /// The band model, built once per test process (ctest runs each test in its own process, in
 /// parallel: the folder carries the process id).
 const fs::path& band_model()

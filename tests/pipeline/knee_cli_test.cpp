@@ -24,21 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json read_json(const fs::path& file)
-{
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-std::vector<std::string> lines(const fs::path& file)
-{
-  std::ifstream in(file);
-  std::vector<std::string> result;
-  for (std::string line; std::getline(in, line);)
-    result.push_back(line);
-  return result;
-}
-
 std::vector<std::string> cells(const std::string& line)
 {
   std::vector<std::string> result;

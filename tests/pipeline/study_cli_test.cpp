@@ -13,16 +13,6 @@
 using namespace ligsim::test;
 namespace fs = std::filesystem;
 
-namespace {
-
-nlohmann::json read_json(const fs::path& file)
-{
-  std::ifstream in(file);
-  return nlohmann::json::parse(in);
-}
-
-} // namespace
-
 TEST(StudyCli, ConvergenceLaddersAgainstTheFinestRun)
 {
   const StudyBand band("convergence");
