@@ -63,6 +63,7 @@ ContactPotential::ContactPotential(int node_count, const ContactSurface& surface
       if (!excluded[static_cast<std::size_t>(n)])
         pairs.push_back({n, areas_mm2(static_cast<Eigen::Index>(i))});
     }
+    m_closeness.emplace_back(pairs.size());
     m_state.emplace_back(pairs.size());
     m_pairs.push_back(std::move(pairs));
   }
@@ -101,7 +102,7 @@ bool ContactPotential::surely_farther(std::size_t o, const Eigen::Vector3d& p, d
 
 bool ContactPotential::maybe_near(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const
 {
-  PairState& state = m_state[o][i];
+  Closeness& state = m_closeness[o][i];
   if ((p - state.p0).squaredNorm() > 0.25 * m_slack_mm * m_slack_mm) {
     state.p0 = p;
     state.near = !surely_farther(o, p, m_settings.d_hat_mm + m_slack_mm);

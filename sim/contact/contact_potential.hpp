@@ -83,10 +83,14 @@ private:
     int node = 0;
     double area = 0.0;
   };
-  /// Where a pair was last classified (local point) and whether it was near then.
-  struct PairState {
+  /// Where a pair was last classified (local point) and whether it was near then: what every
+  /// call reads for every pair, kept apart from the samples so that it stays in cache.
+  struct Closeness {
     Eigen::Vector3d p0 = Eigen::Vector3d::Constant(INFINITY);
     bool near = true;
+  };
+  /// What a near pair was last sampled and bounded at.
+  struct PairState {
     Eigen::Vector3d sampled_at = Eigen::Vector3d::Constant(INFINITY);
     DistanceSample sample; ///< at `sampled_at`, with the Hessian
     Eigen::Vector3d bounded_at = Eigen::Vector3d::Constant(INFINITY);
@@ -121,7 +125,8 @@ private:
   int m_node_count = 0;
   std::vector<ContactObstacle> m_obstacles;
   std::vector<std::vector<Pair>> m_pairs; ///< per obstacle
-  /// Per obstacle and pair (a cache: calls must not run concurrently).
+  /// Per obstacle and pair (caches: calls must not run concurrently).
+  mutable std::vector<std::vector<Closeness>> m_closeness;
   mutable std::vector<std::vector<PairState>> m_state;
   double m_slack_mm = 0.0;
   ContactSettings m_settings;

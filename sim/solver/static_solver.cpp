@@ -172,7 +172,6 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
       return true;
     if (exact_extra && (solve.indefinite || solve.ok)) {
       // Indefinite with the exact extra Hessian: its projection next, then the elements'.
-      ++report.projected_extra_iterations;
       exact_extra = false;
       blocks.clear();
       m_extra->hessian_blocks(x, t, true, blocks);

@@ -64,9 +64,6 @@ struct StepReport {
   int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
   int line_search_backtracks = 0;
   int saddle_iterations = 0; ///< iterations by the unprojected (indefinite) Newton step
-  /// iterations where the extra potential's exact Hessian left the matrix indefinite (and its
-  /// projection was used)
-  int projected_extra_iterations = 0;
   double relative_residual = 0.0;
   /// Converged at the round-off floor (residual stagnating a hair above the tolerance);
   /// `floor` gives the figures.

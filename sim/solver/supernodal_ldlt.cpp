@@ -251,7 +251,8 @@ bool SupernodalLdlt::factorize(const Eigen::SparseMatrix<double>& lower)
 {
   const SupernodalSymbolic& a = *m_symbolic;
   m_ok = false;
-  std::fill(m_values.begin(), m_values.end(), 0.0);
+  std::vector<float>().swap(m_single);
+  m_values.assign(a.value_count, 0.0);
   const double* values = lower.valuePtr();
   for (std::size_t p = 0; p < a.scatter.size(); ++p)
     m_values[static_cast<std::size_t>(a.scatter[p])] += values[p];
@@ -363,23 +364,29 @@ bool SupernodalLdlt::factorize_supernode(int s)
   return true;
 }
 
-Eigen::VectorXd SupernodalLdlt::solve(const Eigen::VectorXd& b) const
+namespace {
+
+/// Forward substitution, pivots, back substitution with L's blocks `values` in precision Scalar.
+template <class Scalar>
+Eigen::VectorXd solve_with(const SupernodalSymbolic& a, const Scalar* values,
+                           const Eigen::VectorXd& pivots, const Eigen::VectorXd& b)
 {
-  using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
-  const SupernodalSymbolic& a = *m_symbolic;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Block = Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>, 0,
+                           Eigen::OuterStride<>>;
   const int n = a.size();
-  Eigen::VectorXd y(n);
+  Vector y(n);
   for (int k = 0; k < n; ++k)
-    y(k) = b(a.perm[static_cast<std::size_t>(k)]);
-  Eigen::VectorXd scratch(a.tallest);
+    y(k) = static_cast<Scalar>(b(a.perm[static_cast<std::size_t>(k)]));
+  Vector scratch(a.tallest);
   const int supernodes = a.supernodes();
   for (int s = 0; s < supernodes; ++s) {
     const int width = a.super[s + 1] - a.super[s];
     const int height = a.row_start[s + 1] - a.row_start[s];
-    const Block L(m_values.data() + a.value_start[static_cast<std::size_t>(s)], height, width,
+    const Block L(values + a.value_start[static_cast<std::size_t>(s)], height, width,
                   Eigen::OuterStride<>(height));
-    Eigen::Ref<Eigen::VectorXd> x = y.segment(a.super[s], width);
-    L.topRows(width).triangularView<Eigen::UnitLower>().solveInPlace(x);
+    Eigen::Ref<Vector> x = y.segment(a.super[s], width);
+    L.topRows(width).template triangularView<Eigen::UnitLower>().solveInPlace(x);
     const int below = height - width;
     if (below == 0)
       continue;
@@ -388,13 +395,13 @@ Eigen::VectorXd SupernodalLdlt::solve(const Eigen::VectorXd& b) const
     for (int r = 0; r < below; ++r)
       y(rows[r]) -= scratch(r);
   }
-  y.array() /= m_pivots.array();
+  y.array() /= pivots.array().template cast<Scalar>();
   for (int s = supernodes - 1; s >= 0; --s) {
     const int width = a.super[s + 1] - a.super[s];
     const int height = a.row_start[s + 1] - a.row_start[s];
-    const Block L(m_values.data() + a.value_start[static_cast<std::size_t>(s)], height, width,
+    const Block L(values + a.value_start[static_cast<std::size_t>(s)], height, width,
                   Eigen::OuterStride<>(height));
-    Eigen::Ref<Eigen::VectorXd> x = y.segment(a.super[s], width);
+    Eigen::Ref<Vector> x = y.segment(a.super[s], width);
     const int below = height - width;
     if (below > 0) {
       const int* rows = a.rows.data() + a.row_start[s] + width;
@@ -402,12 +409,28 @@ Eigen::VectorXd SupernodalLdlt::solve(const Eigen::VectorXd& b) const
         scratch(r) = y(rows[r]);
       x.noalias() -= L.bottomRows(below).transpose() * scratch.head(below);
     }
-    L.topRows(width).triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
+    L.topRows(width).template triangularView<Eigen::UnitLower>().transpose().solveInPlace(x);
   }
   Eigen::VectorXd result(n);
   for (int k = 0; k < n; ++k)
-    result(a.perm[static_cast<std::size_t>(k)]) = y(k);
+    result(a.perm[static_cast<std::size_t>(k)]) = static_cast<double>(y(k));
   return result;
+}
+
+} // namespace
+
+Eigen::VectorXd SupernodalLdlt::solve(const Eigen::VectorXd& b) const
+{
+  return single_precision() ? solve_with(*m_symbolic, m_single.data(), m_pivots, b)
+                            : solve_with(*m_symbolic, m_values.data(), m_pivots, b);
+}
+
+void SupernodalLdlt::to_single_precision()
+{
+  if (!m_ok || single_precision())
+    return;
+  m_single.assign(m_values.begin(), m_values.end());
+  std::vector<double>().swap(m_values);
 }
 
 } // namespace ligsim::sim

@@ -54,8 +54,13 @@ public:
   /// The last factorize() succeeded.
   bool ok() const { return m_ok; }
 
-  /// Solves A y = b with the factor (vectors in the matrix's numbering).
+  /// Solves A y = b with the factor (vectors in the matrix's numbering), in single precision
+  /// after to_single_precision().
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Keeps L in single precision only, until the next factorize(): half the memory, and half
+  /// the memory traffic of a solve (a preconditioner's accuracy; the pivots stay double).
+  void to_single_precision();
+  bool single_precision() const { return !m_single.empty(); }
   /// Pivots D of the last successful factorisation, in elimination order (empty otherwise).
   const Eigen::VectorXd& pivots() const { return m_pivots; }
   /// Negative pivots: the matrix's negative eigenvalues (-1 without a factor).
@@ -77,6 +82,7 @@ private:
 
   std::shared_ptr<const SupernodalSymbolic> m_symbolic;
   std::vector<double> m_values; ///< column-major blocks, #rows x #columns each
+  std::vector<float> m_single;  ///< the same in single precision (m_values then empty)
   Eigen::VectorXd m_pivots;
   bool m_ok = false;
   int m_negative = 0;

@@ -114,6 +114,27 @@ TEST(SupernodalLdlt, RefactorisesNewValuesOnTheAnalysedPattern)
   EXPECT_LT(relative_residual(second, ldlt.solve(b), b), 1e-13);
 }
 
+TEST(SupernodalLdlt, SinglePrecisionSolvesToFloatAccuracyUntilTheNextFactorisation)
+{
+  const Eigen::SparseMatrix<double> A = grid_matrix(7, 30.0, 8);
+  SupernodalLdlt ldlt;
+  ldlt.analyze(A);
+  ASSERT_TRUE(ldlt.factorize(A));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  const Eigen::VectorXd exact = ldlt.solve(b);
+  EXPECT_FALSE(ldlt.single_precision());
+  ldlt.to_single_precision();
+  ASSERT_TRUE(ldlt.single_precision());
+  const Eigen::VectorXd single = ldlt.solve(b);
+  // Float rounding (2^-24 = 6e-8) through a well-conditioned factor, but not double accuracy.
+  EXPECT_LT(relative_residual(A, single, b), 1e-5);
+  EXPECT_GT((single - exact).norm(), 1e-12 * exact.norm());
+  EXPECT_EQ(ldlt.negative_pivots(), 0); // the pivots stay
+  ASSERT_TRUE(ldlt.factorize(A));       // back to double precision
+  EXPECT_FALSE(ldlt.single_precision());
+  EXPECT_LT(relative_residual(A, ldlt.solve(b), b), 1e-13);
+}
+
 TEST(SupernodalLdlt, FactorsOfOnePatternShareTheLastAnalysis)
 {
   const Eigen::SparseMatrix<double> first = grid_matrix(5, 30.0, 6);
