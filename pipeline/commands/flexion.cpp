@@ -170,20 +170,21 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
 void print_table(const std::vector<sim::LigamentSweep>& sweeps,
                  const std::vector<sim::LigamentModel>& ligaments)
 {
-  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>9} {:>4}\n", "ligament",
-             "angle", "femur_N", "distal_N", "contact_N", "energy_mJ", "mean_%", "max_%", "dL_mm",
-             "dL_%", "conv");
+  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>9} {:>4}\n",
+             "ligament", "angle", "femur_N", "distal_N", "contact_N", "energy_mJ", "mean_%",
+             "max_%", "region_%", "dL_mm", "dL_%", "conv");
   for (std::size_t l = 0; l < sweeps.size(); ++l)
     for (const sim::AngleResult& a : sweeps[l].result.angles) {
       double contact = 0.0;
       for (const sim::BoneContact& bone : a.contact)
         contact += bone.in_solve ? bone.force_n.norm() : 0.0;
       fmt::print("{:<8} {:>6} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} {:>8.2f} {:>8.2f} "
-                 "{:>9.2f} {:>4}\n",
+                 "{:>8.2f} {:>9.2f} {:>4}\n",
                  sweeps[l].name, sim::angle_label(a.angle_deg), a.femur_force_n.norm(),
                  a.tibia_force_n.norm(), contact, a.strain_energy_mj,
                  100.0 * (a.mean_fiber_stretch - 1.0), 100.0 * (a.max_fiber_stretch - 1.0),
-                 a.length_change_mm, a.length_change_pct, a.converged ? "yes" : "no");
+                 100.0 * (a.max_regional_fiber_stretch - 1.0), a.length_change_mm,
+                 a.length_change_pct, a.converged ? "yes" : "no");
     }
   if (ligaments.size() > 1)
     fmt::print("(distal_N: the force on the bone of the distal footprint: {})\n", [&] {

@@ -67,12 +67,16 @@ void read_motion(TomlTable& table, const fs::path& base, MotionSettings& motion)
 
 void read_ligament(TomlTable& table, LigamentSettings& ligament, std::set<std::string>& given)
 {
-  for (const char* key : {"name", "failure_strain", "failure_load_n"})
+  for (const char* key : {"name", "failure_strain", "failure_load_n", "strain_region_radius_mm"})
     if (table.has(key))
       given.insert(std::string("ligament.") + key);
   ligament.name = table.text("name", ligament.name);
   ligament.failure_strain = table.number("failure_strain", ligament.failure_strain);
   ligament.failure_load_n = table.number("failure_load_n", ligament.failure_load_n);
+  ligament.strain_region_radius_mm =
+      table.number("strain_region_radius_mm", ligament.strain_region_radius_mm);
+  if (!(ligament.strain_region_radius_mm > 0.0))
+    table.fail_at("strain_region_radius_mm", "the region radius must be a positive number of mm");
   table.reject_unknown_keys();
 }
 

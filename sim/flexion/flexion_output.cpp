@@ -51,6 +51,8 @@ nlohmann::json angle_json(const AngleResult& angle)
     entry["frame"] = angle.frame;
   if (!std::isnan(angle.time_s))
     entry["time_s"] = angle.time_s;
+  if (!std::isnan(angle.max_regional_fiber_stretch))
+    entry["max_regional_fiber_strain"] = angle.max_regional_fiber_stretch - 1.0;
   if (!std::isnan(angle.length_mm))
     entry.update({{"length_mm", angle.length_mm},
                   {"length_change_mm", angle.length_change_mm},
@@ -158,7 +160,7 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
                     "relative_residual,min_j,wall_s,femur_contact_n,tibia_contact_n,"
                     "femur_contact_area_mm2,tibia_contact_area_mm2,max_penetration_mm,"
                     "mean_fiber_strain,max_fiber_strain,volume_beyond_failure_strain,"
-                    "length_change_mm,length_change_pct,time_s";
+                    "length_change_mm,length_change_pct,time_s,max_regional_fiber_strain";
   csv += fibula ? ",fibula_force_n,fibula_contact_n,fibula_contact_area_mm2\n" : "\n";
   const auto number = [](double value) {
     return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
@@ -190,6 +192,7 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
       csv += fmt::format(",{:.6g},{:.6g},{:.6g},{},{},{}", a.mean_fiber_stretch - 1.0,
                          a.max_fiber_stretch - 1.0, a.failed_volume_fraction,
                          number(a.length_change_mm), number(a.length_change_pct), number(a.time_s));
+      csv += "," + number(a.max_regional_fiber_stretch - 1.0);
       if (fibula)
         csv += fmt::format(",{},{},{}", on_tibia ? "" : distal, contact["fibula"].first,
                            contact["fibula"].second);

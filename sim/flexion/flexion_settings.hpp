@@ -67,6 +67,10 @@ struct LigamentSettings {
   double failure_strain = 0.171;
   /// MCL load to failure, 799 +- 209 N (Wilson et al., J Orthop Sports Phys Ther 2012).
   double failure_load_n = 799.0;
+  /// Radius of the regions of the regional peak fiber strain, mm: experiments measure strain
+  /// between surface markers a few millimetres apart (18 regions of the superficial MCL in Lujan
+  /// et al., J Biomech Eng 2007, doi:10.1115/1.2720915).
+  double strain_region_radius_mm = 2.0;
 };
 
 struct InteractiveSettings {

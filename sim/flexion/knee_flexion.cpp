@@ -35,6 +35,7 @@ struct Measuring {
   const KneeContact* contact;
   bool contact_on;
   double failure_strain;
+  const RegionalMean& regions;
   const EmbeddedPolyline* centerline;
   double reference_length_mm; ///< NaN until the first angle at 0 degrees (or the rest shape's)
 };
@@ -46,9 +47,10 @@ void measure(Measuring& m, double t, const Eigen::VectorXd& x, const Eigen::Vect
   const HyperelasticBody& body = m.body;
   if (m.contact)
     result.contact = m.contact->measure(x, t, m.contact_on, result.gap_mm, result.pressure_mpa);
-  const FiberMeasures fibers = measure_fibers(body, x, m.failure_strain);
+  const FiberMeasures fibers = measure_fibers(body, x, m.failure_strain, &m.regions);
   result.mean_fiber_stretch = fibers.mean_fiber_stretch;
   result.max_fiber_stretch = fibers.max_fiber_stretch;
+  result.max_regional_fiber_stretch = fibers.max_regional_fiber_stretch;
   result.min_j = fibers.min_j;
   result.failed_volume_fraction = fibers.failed_volume_fraction;
   if (m.centerline) {
@@ -214,14 +216,16 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
 } // namespace
 
 FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x,
-                             double failure_strain)
+                             double failure_strain, const RegionalMean* regions)
 {
   FiberMeasures result;
   double volume = 0.0;
   double weighted_stretch = 0.0;
   double failed_volume = 0.0;
+  Eigen::VectorXd stretches(body.element_count());
   for (Eigen::Index e = 0; e < body.element_count(); ++e) {
     const ElementMeasures measures = body.measures(x, e);
+    stretches[e] = measures.fiber_stretch;
     const double v0 = body.shape(e).V0;
     volume += v0;
     weighted_stretch += v0 * measures.fiber_stretch;
@@ -232,7 +236,22 @@ FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd
   }
   result.mean_fiber_stretch = weighted_stretch / volume;
   result.failed_volume_fraction = failed_volume / volume;
+  if (regions)
+    result.max_regional_fiber_stretch = regions->max_mean(stretches);
   return result;
+}
+
+RegionalMean element_regions(const HyperelasticBody& body, double radius_mm)
+{
+  const TetMesh& mesh = body.mesh();
+  Eigen::MatrixX3d centroids(mesh.T.rows(), 3);
+  Eigen::VectorXd volumes(mesh.T.rows());
+  for (Eigen::Index e = 0; e < mesh.T.rows(); ++e) {
+    centroids.row(e) = 0.25 * (mesh.V.row(mesh.T(e, 0)) + mesh.V.row(mesh.T(e, 1)) +
+                               mesh.V.row(mesh.T(e, 2)) + mesh.V.row(mesh.T(e, 3)));
+    volumes[e] = body.shape(e).V0;
+  }
+  return RegionalMean(centroids, volumes, radius_mm);
 }
 
 FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain)
@@ -309,11 +328,13 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   } else if (contact) {
     overlap.before = contact->gaps(x, 0.0);
   }
+  const RegionalMean regions = element_regions(body, settings.ligament.strain_region_radius_mm);
   Measuring measuring{body,
                       conditions,
                       contact,
                       contact && settings.contact.enabled.value_or(true),
                       settings.ligament.failure_strain,
+                      regions,
                       centerline,
                       NAN};
   SweepResult sweep = settings.mode == FlexionMode::quasi_static

@@ -11,6 +11,7 @@
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
 #include "sim/flexion/ligament_length.hpp"
+#include "sim/flexion/regional_strain.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 
@@ -52,12 +53,18 @@ struct FiberMeasures {
   double min_j = INFINITY;
   /// Share of the rest volume whose fiber strain (stretch - 1) exceeds the failure strain.
   double failed_volume_fraction = 0.0;
+  /// The largest regional mean of the fiber stretch (NaN without regions).
+  double max_regional_fiber_stretch = NAN;
 };
 
 /// The fiber measures of state `x` (flat positions, mm), with the share beyond
-/// `failure_strain`.
+/// `failure_strain` and, given `regions`, the largest regional mean.
 FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x,
-                             double failure_strain = INFINITY);
+                             double failure_strain = INFINITY,
+                             const RegionalMean* regions = nullptr);
+
+/// Regions of `radius_mm` about each element of `body` (rest centroids, rest volumes).
+RegionalMean element_regions(const HyperelasticBody& body, double radius_mm);
 
 /// The state at one angle of the sweep.
 struct AngleResult {
@@ -68,6 +75,9 @@ struct AngleResult {
   double strain_energy_mj = 0.0;
   double max_fiber_stretch = 0.0;  ///< |F a|, with the in-situ pre-stretch
   double mean_fiber_stretch = 0.0; ///< volume-weighted
+  /// The largest mean fiber stretch over a region of the ligament settings' radius: the peak
+  /// that does not depend on the mesh at a footprint's edge (regional_strain.hpp).
+  double max_regional_fiber_stretch = NAN;
   /// Share of the ligament's volume whose fiber strain (stretch - 1) exceeds the ligament's
   /// failure strain.
   double failed_volume_fraction = 0.0;

@@ -111,9 +111,10 @@ std::vector<std::string> plausibility_warnings(const AngleResult& angle,
   if (angle.failed_volume_fraction > 0.0)
     warnings.push_back(fmt::format(
         "{:.2g} % of the {}'s volume is strained beyond its failure strain of {:.1f} % (max fiber "
-        "strain {:.1f} %){}",
+        "strain {:.1f} % in one element, {:.1f} % averaged within {:g} mm){}",
         100.0 * angle.failed_volume_fraction, ligament.name, 100.0 * ligament.failure_strain,
-        100.0 * (angle.max_fiber_stretch - 1.0), why));
+        100.0 * (angle.max_fiber_stretch - 1.0), 100.0 * (angle.max_regional_fiber_stretch - 1.0),
+        ligament.strain_region_radius_mm, why));
   const std::string distal = context.footprints.size() > 1 ? context.footprints[1].bone : "tibia";
   for (const auto& [bone, force] : {std::pair{std::string("femur"), angle.femur_force_n},
                                     std::pair{distal, angle.tibia_force_n}})
