@@ -38,6 +38,19 @@ struct FlexionJobOptions {
   bool no_images = false;
 };
 
+/// The Weiss material's parameters as summary.json records them.
+nlohmann::json material_json(const sim::MaterialParameters& m)
+{
+  return {{"mu_mpa", m.mu_mpa},
+          {"k_mpa", m.bulk_modulus_mpa},
+          {"volumetric", to_string(m.volumetric)},
+          {"c3_mpa", m.fiber->c3_mpa},
+          {"c4", m.fiber->c4},
+          {"c5_mpa", m.fiber->c5_mpa},
+          {"lambda_star", m.fiber->lambda_star},
+          {"convention", to_string(m.fiber->convention)}};
+}
+
 void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,
                        RunSummary& summary)
 {
@@ -57,15 +70,7 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
       {"flexion_axis", json_vector3(motion.jcs.flexion_axis)},
       {"tibial_axis", json_vector3(motion.jcs.tibial_axis)},
       {"reference", "Grood & Suntay, J Biomech Eng 1983;105:136"}};
-  const sim::MaterialParameters& m = settings.material;
-  parameters["material"] = {{"mu_mpa", m.mu_mpa},
-                            {"k_mpa", m.bulk_modulus_mpa},
-                            {"volumetric", to_string(m.volumetric)},
-                            {"c3_mpa", m.fiber->c3_mpa},
-                            {"c4", m.fiber->c4},
-                            {"c5_mpa", m.fiber->c5_mpa},
-                            {"lambda_star", m.fiber->lambda_star},
-                            {"convention", to_string(m.fiber->convention)}};
+  parameters["material"] = material_json(settings.material);
   parameters["in_situ_strain"] = settings.in_situ_strain;
   const sim::ContactConfig& contact = settings.contact;
   if (contact.enabled.value_or(true))
@@ -137,7 +142,6 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
   for (const sim::AngleResult& angle : result.angles)
     entries.push_back(sim::angle_json(angle));
   const sim::LigamentSettings& ligament = sweep.settings.ligament;
-  const sim::MaterialParameters& m = sweep.settings.material;
   nlohmann::json json = {{"angles", entries},
                          {"setup", sweep.setup},
                          {"unrelaxed_prestretch_energy_mj", result.unrelaxed_energy_mj},
@@ -148,15 +152,7 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
                            {"failure_strain", ligament.failure_strain},
                            {"failure_load_n", ligament.failure_load_n},
                            {"warnings", sweep.warnings}}},
-                         {"material",
-                          {{"mu_mpa", m.mu_mpa},
-                           {"k_mpa", m.bulk_modulus_mpa},
-                           {"volumetric", to_string(m.volumetric)},
-                           {"c3_mpa", m.fiber->c3_mpa},
-                           {"c4", m.fiber->c4},
-                           {"c5_mpa", m.fiber->c5_mpa},
-                           {"lambda_star", m.fiber->lambda_star},
-                           {"convention", to_string(m.fiber->convention)}}},
+                         {"material", material_json(sweep.settings.material)},
                          {"in_situ_strain", sweep.settings.in_situ_strain},
                          {"success", result.success}};
   if (sweep.settings.mode == sim::FlexionMode::interactive)

@@ -50,8 +50,11 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
   const TriangleSurface ligament = load_ligament(config, &arrays);
   const auto femur = load_bone(config.femur);
   const auto tibia = load_bone(config.tibia);
-  attachments::Inputs inputs{&ligament, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr,
-                             std::move(arrays)};
+  attachments::Inputs inputs;
+  inputs.ligament = &ligament;
+  inputs.femur = femur ? &*femur : nullptr;
+  inputs.tibia = tibia ? &*tibia : nullptr;
+  inputs.arrays = std::move(arrays);
   std::optional<TriangleSurface> femur_patch, tibia_patch;
   if (!config.femur_attachment.patch.empty())
     femur_patch = io::read_surface(config.femur_attachment.patch);
