@@ -3,7 +3,10 @@
 /// same study gives on that ligament's one-ligament config (the ligaments never touch, and each
 /// is solved on its own). Short ladders: seconds each.
 
+#include "common/error.hpp"
 #include "pipeline/study/study_model.hpp"
+#include "pipeline/study/study_runs.hpp"
+#include "sim/flexion/flexion_config.hpp"
 #include "tests/pipeline/cli_runner.hpp"
 #include "tests/pipeline/study_fixture.hpp"
 
@@ -261,4 +264,43 @@ TEST(StudyKnee, ChoosesLigamentsByNameAndNamesTheOnesThereAreOnABadName)
   expect_error("study variant --model-config " + knee.knee_config.string() +
                    " --kind offset --amount 0.2",
                "describes a knee");
+}
+
+TEST(StudyKnee, ALigamentThatCannotBeBuiltFailsAloneAndTheKneeKeepsTheOthers)
+{
+  const StudyKnee knee("partial");
+  study::StudyModel model = study::load_study_model(knee.knee_config, {}, "study test");
+  model.config.ligaments[0].build.surface = knee.folder / "missing-A.vtp";
+  const fs::path dir = fresh_folder("study_knee_partial_" + knee.tag);
+  const study::BuiltModel built = study::build_model(model, dir);
+  ASSERT_EQ(built.ligaments.size(), 2u);
+  EXPECT_NE(built.ligaments[0].failure.find("missing-A.vtp"), std::string::npos)
+      << built.ligaments[0].failure;
+  EXPECT_EQ(built.ligaments[1].failure, "");
+  EXPECT_GT(built.ligaments[1].tets, 0);
+  const nlohmann::json manifest = read_json(dir / "knee.json");
+  ASSERT_EQ(manifest["ligaments"].size(), 1u);
+  EXPECT_EQ(manifest["ligaments"][0]["name"], "B");
+
+  // The sweep has what was built.
+  sim::FlexionSettings settings;
+  sim::read_flexion_config(knee.flexion_config, settings);
+  settings.model_dir = dir;
+  const std::vector<study::FlexionFigures> figures = study::run_flexion(settings);
+  ASSERT_EQ(figures.size(), 1u);
+  EXPECT_EQ(figures[0].ligament, "B");
+  EXPECT_TRUE(figures[0].success) << figures[0].failure;
+  EXPECT_EQ(study::figures_of(figures, "A"), nullptr);
+
+  // No ligament built: one error naming each.
+  model.config.ligaments[1].build.surface = knee.folder / "missing-B.vtp";
+  try {
+    study::build_model(model, fresh_folder("study_knee_none_" + knee.tag));
+    ADD_FAILURE() << "built a knee without ligaments";
+  } catch (const Error& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("no ligament of the knee could be built"), std::string::npos) << text;
+    EXPECT_NE(text.find("missing-A.vtp"), std::string::npos) << text;
+    EXPECT_NE(text.find("missing-B.vtp"), std::string::npos) << text;
+  }
 }
