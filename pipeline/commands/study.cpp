@@ -16,7 +16,9 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -78,13 +80,30 @@ sim::FlexionSettings flexion_settings(const StudyOptions& o)
 }
 
 /// The model the study builds: the ligaments --ligaments (else the flexion config) names. The
-/// built knee holds only those, so the sweeps take all of it.
+/// built knee holds only those, so the sweeps take all of it, and a flexion config's [ligament]
+/// table for a ligament of the knee left out of the study is set aside.
 study::StudyModel study_model(const StudyOptions& o, sim::FlexionSettings& settings,
                               const std::string& job)
 {
   const std::vector<std::string> chosen = o.ligaments.empty() ? settings.ligaments : o.ligaments;
   study::StudyModel model = study::load_study_model(o.model_config, chosen, job);
   settings.ligaments.clear();
+  if (!model.knee || !settings.given.count("ligament.name"))
+    return model;
+  const auto has = [&](const study::StudyModel& knee) {
+    const std::vector<std::string> names = study::ligament_names(knee, "");
+    return std::find(names.begin(), names.end(), settings.ligament.name) != names.end();
+  };
+  if (has(model))
+    return model;
+  const study::StudyModel whole = study::load_study_model(o.model_config, {}, job);
+  if (!has(whole))
+    fail("{}: the flexion config's [ligament] names {}, which the knee of {} does not have (it "
+         "has {})",
+         job, settings.ligament.name, o.model_config.string(),
+         fmt::join(study::ligament_names(whole, ""), ", "));
+  for (const char* key : {"ligament.name", "ligament.failure_strain", "ligament.failure_load_n"})
+    settings.given.erase(key);
   return model;
 }
 

@@ -353,7 +353,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
         models[name] =
             build_model(scaled_model(inputs.model, thickness, spec.mesh_scale, spec.voxel_scale),
                         inputs.out / "models" / name);
-      if (!sweeps.count(sweep_key)) {
+      if (!sweeps.count(sweep_key) && models[name].any_built()) {
         sim::FlexionSettings settings = inputs.flexion;
         settings.model_dir = models[name].dir;
         settings.images = false;

@@ -235,7 +235,8 @@ nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs)
     try {
       model = i == 0 ? baseline : build_model(variant.model, inputs.out / "models" / variant.name);
       settings.model_dir = model.dir;
-      figures = run_flexion(settings);
+      if (model.any_built())
+        figures = run_flexion(settings);
     } catch (const Error& e) {
       failure = e.what();
     }

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
@@ -109,7 +110,6 @@ BuiltModel build_model(const StudyModel& model, const fs::path& dir)
     // itself) fails alone, and the knee keeps the others.
     pipeline::KneeConfig built_ones = model.config;
     built_ones.ligaments.clear();
-    std::string failures;
     for (std::size_t l = 0; l < model.config.ligaments.size(); ++l) {
       const pipeline::LigamentConfig& ligament = model.config.ligaments[l];
       try {
@@ -117,13 +117,15 @@ BuiltModel build_model(const StudyModel& model, const fs::path& dir)
         built_ones.ligaments.push_back(ligament);
       } catch (const Error& e) {
         built.ligaments[l].failure = e.what();
-        failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", ligament.name, e.what());
         summary.results()["failed"][ligament.name] = e.what();
       }
     }
-    if (built_ones.ligaments.empty())
-      fail("no ligament of the knee could be built: {}", failures);
-    pipeline::write_knee_files(built_ones, dir);
+    if (!built_ones.ligaments.empty()) {
+      pipeline::write_knee_files(built_ones, dir);
+    } else { // nothing to sweep, not even an earlier run's knee
+      std::error_code ignored;
+      fs::remove(dir / knee_manifest_file, ignored);
+    }
   } else {
     const pipeline::BuildConfig& config = model.config.ligaments.front().build;
     summary.inputs() = {{"surface", config.surface.string()},
@@ -137,6 +139,12 @@ BuiltModel build_model(const StudyModel& model, const fs::path& dir)
     built_ligament(summary.json()["stages"], model.knee ? model.config.ligaments[l].name + "/" : "",
                    built.ligaments[l]);
   return built;
+}
+
+bool BuiltModel::any_built() const
+{
+  return std::any_of(ligaments.begin(), ligaments.end(),
+                     [](const BuiltLigament& l) { return l.failure.empty(); });
 }
 
 const FlexionFigures* figures_of(const std::vector<FlexionFigures>& figures,

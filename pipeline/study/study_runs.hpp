@@ -28,13 +28,16 @@ struct BuiltLigament {
 struct BuiltModel {
   std::filesystem::path dir;
   std::vector<BuiltLigament> ligaments; ///< in the order of StudyModel's ligaments
+
+  /// Whether some ligament was built (a knee with none has no knee.json to sweep).
+  bool any_built() const;
 };
 
 /// Runs the stage graph of every ligament into `dir` (stages that are current are reused) and
 /// writes summary.json (and, for a knee, the bones and knee.json), as `ligsim build --out dir`
 /// with the config would; except that a knee's ligament that cannot be built is left out of
-/// knee.json with its failure, so that one ligament's failure leaves the others' figures. Throws
-/// what the stages throw for one ligament, and when no ligament of a knee could be built.
+/// knee.json with its failure, so that one ligament's failure leaves the others' figures (none
+/// built: no knee.json). Throws what the stages throw for a one-ligament config.
 BuiltModel build_model(const StudyModel& model, const std::filesystem::path& dir);
 
 /// The figures of one flexion angle.
