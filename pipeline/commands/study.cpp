@@ -80,8 +80,8 @@ sim::FlexionSettings flexion_settings(const StudyOptions& o)
 }
 
 /// The model the study builds: the ligaments --ligaments (else the flexion config) names. The
-/// built knee holds only those, so the sweeps take all of it, and a flexion config's [ligament]
-/// table for a ligament of the knee left out of the study is set aside.
+/// built knee holds only those, so the sweeps take all of it. A flexion config's [ligament]
+/// table must name a ligament of the knee (one left out of the study is set aside by the sweeps).
 study::StudyModel study_model(const StudyOptions& o, sim::FlexionSettings& settings,
                               const std::string& job)
 {
@@ -102,8 +102,6 @@ study::StudyModel study_model(const StudyOptions& o, sim::FlexionSettings& setti
          "has {})",
          job, settings.ligament.name, o.model_config.string(),
          fmt::join(study::ligament_names(whole, ""), ", "));
-  for (const char* key : {"ligament.name", "ligament.failure_strain", "ligament.failure_load_n"})
-    settings.given.erase(key);
   return model;
 }
 

@@ -176,15 +176,24 @@ double weighted_quantile(const std::vector<double>& values, const std::vector<do
 std::vector<FlexionFigures> run_flexion(const sim::FlexionSettings& settings)
 {
   const StageMeter meter;
-  const std::vector<sim::LigamentModel> ligaments =
-      sim::chosen_ligaments(sim::load_knee(settings.model_dir, settings.ligament.name), settings);
+  std::vector<sim::LigamentModel> all = sim::load_knee(settings.model_dir, settings.ligament.name);
+  // A [ligament] table for a ligament this knee lacks (left out of the study, or not built in
+  // this variant) applies to none of its ligaments.
+  sim::FlexionSettings own = settings;
+  const bool knee = all.size() > 1 || all.front().manifest;
+  if (knee && std::none_of(all.begin(), all.end(), [&](const sim::LigamentModel& l) {
+        return l.name == settings.ligament.name;
+      }))
+    for (const char* key : {"ligament.name", "ligament.failure_strain", "ligament.failure_load_n"})
+      own.given.erase(key);
+  const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(std::move(all), own);
   // The ligaments share the bones and the anatomy: the motion comes from any of them.
-  const sim::KneeMotion motion = sim::resolve_knee_motion(ligaments.front().model, settings);
+  const sim::KneeMotion motion = sim::resolve_knee_motion(ligaments.front().model, own);
   const double shared_setup_s = meter.wall_s();
   std::vector<FlexionFigures> figures;
   for (const sim::LigamentModel& ligament : ligaments) {
     figures.push_back(
-        sweep_ligament(ligament, motion, sim::ligament_settings(settings, ligament), meter));
+        sweep_ligament(ligament, motion, sim::ligament_settings(own, ligament), meter));
     figures.back().setup_s += shared_setup_s;
   }
   return figures;

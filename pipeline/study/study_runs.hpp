@@ -67,8 +67,9 @@ struct FlexionFigures {
 
 /// Runs the sweep of `settings` on every ligament of the model in `settings.model_dir` (those
 /// `settings.ligaments` names in a knee), each with its own material and in-situ strain as
-/// `ligsim flexion` gives it, against no bone (no files written, no pictures). Never throws on
-/// divergence: each ligament's `success` and `failure` say where it stopped.
+/// `ligsim flexion` gives it, against no bone (no files written, no pictures); a [ligament]
+/// table naming a ligament the knee lacks is set aside. Never throws on divergence: each
+/// ligament's `success` and `failure` say where it stopped.
 std::vector<FlexionFigures> run_flexion(const sim::FlexionSettings& settings);
 
 /// The figures of the ligament called `name`, null when the sweep has none.

@@ -310,10 +310,12 @@ TEST(StudyKnee, ALigamentThatCannotBeBuiltFailsAloneAndTheKneeKeepsTheOthers)
   ASSERT_EQ(manifest["ligaments"].size(), 1u);
   EXPECT_EQ(manifest["ligaments"][0]["name"], "B");
 
-  // The sweep has what was built.
+  // The sweep has what was built; a [ligament] table for A applies to none of it.
   sim::FlexionSettings settings;
   sim::read_flexion_config(knee.flexion_config, settings);
   settings.model_dir = dir;
+  settings.ligament.name = "A";
+  settings.given.insert("ligament.name");
   const std::vector<study::FlexionFigures> figures = study::run_flexion(settings);
   ASSERT_EQ(figures.size(), 1u);
   EXPECT_EQ(figures[0].ligament, "B");
