@@ -9,12 +9,16 @@
 #include "pipeline/study/cohort_table.hpp"
 #include "pipeline/study/convergence_study.hpp"
 #include "pipeline/study/sensitivity_study.hpp"
+#include "pipeline/study/sensitivity_variants.hpp"
+#include "pipeline/study/study_model.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/flexion/render/offscreen_display.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -34,6 +38,7 @@ struct StudyOptions {
   fs::path flexion_config;
   fs::path out;
   std::vector<double> angles;
+  std::vector<std::string> ligaments;
   bool no_png = false;
 };
 
@@ -41,7 +46,8 @@ void add_study_options(CLI::App* command, StudyOptions& o)
 {
   command
       ->add_option("--model-config", o.model_config,
-                   "build config (.toml) of the model, as for `ligsim build --config`")
+                   "build config (.toml) of the model, as for `ligsim build --config`: one "
+                   "ligament's or a knee's")
       ->required()
       ->check(CLI::ExistingFile);
   command
@@ -51,6 +57,11 @@ void add_study_options(CLI::App* command, StudyOptions& o)
       ->check(CLI::ExistingFile);
   command->add_option("--out", o.out, "output folder")->required();
   command->add_option("--angles", o.angles, "flexion angles, deg (default: the config's)")
+      ->delimiter(',');
+  command
+      ->add_option("--ligaments", o.ligaments,
+                   "a knee config: the ligaments to study, by name (default: the flexion "
+                   "config's `ligaments`, else all)")
       ->delimiter(',');
   command->add_flag("--no-png", o.no_png, "plots as SVG only (no X server needed)");
 }
@@ -66,6 +77,32 @@ sim::FlexionSettings flexion_settings(const StudyOptions& o)
   settings.model_dir = o.out; // checked by validate(); each run sets its own
   sim::validate(settings);
   return settings;
+}
+
+/// The model the study builds: the ligaments --ligaments (else the flexion config) names. The
+/// built knee holds only those, so the sweeps take all of it. A flexion config's [ligament]
+/// table must name a ligament of the knee (one left out of the study is set aside by the sweeps).
+study::StudyModel study_model(const StudyOptions& o, sim::FlexionSettings& settings,
+                              const std::string& job)
+{
+  const std::vector<std::string> chosen = o.ligaments.empty() ? settings.ligaments : o.ligaments;
+  study::StudyModel model = study::load_study_model(o.model_config, chosen, job);
+  settings.ligaments.clear();
+  if (!model.knee || !settings.given.count("ligament.name"))
+    return model;
+  const auto has = [&](const study::StudyModel& knee) {
+    const std::vector<std::string> names = study::ligament_names(knee, "");
+    return std::find(names.begin(), names.end(), settings.ligament.name) != names.end();
+  };
+  if (has(model))
+    return model;
+  const study::StudyModel whole = study::load_study_model(o.model_config, {}, job);
+  if (!has(whole))
+    fail("{}: the flexion config's [ligament] names {}, which the knee of {} does not have (it "
+         "has {})",
+         job, settings.ligament.name, o.model_config.string(),
+         fmt::join(study::ligament_names(whole, ""), ", "));
+  return model;
 }
 
 void check_ladder(const std::vector<double>& values, const std::string& name, bool allow_empty)
@@ -85,7 +122,7 @@ struct ConvergenceOptions {
 /// What every study job does around its own work: the display for the PNG plots (before
 /// anything is computed), the output folder, summary.json, and where the table and plot are.
 void run_study_job(const StudyOptions& o, const std::string& name, nlohmann::json parameters,
-                   const std::vector<double>& angles_deg,
+                   const std::vector<double>& angles_deg, const std::vector<std::string>& ligaments,
                    const std::function<nlohmann::json()>& run)
 {
   RunSummary summary("study " + name);
@@ -93,6 +130,7 @@ void run_study_job(const StudyOptions& o, const std::string& name, nlohmann::jso
   summary.inputs() = {{"model_config", o.model_config.string()},
                       {"config", o.flexion_config.string()}};
   parameters["angles_deg"] = angles_deg;
+  parameters["ligaments"] = ligaments;
   parameters["contact"] = "none: the ligament may pass through the bones";
   summary.parameters() = parameters;
   std::optional<sim::OffscreenDisplay> display;
@@ -109,8 +147,8 @@ void run_study_job(const StudyOptions& o, const std::string& name, nlohmann::jso
 void run_convergence(const ConvergenceOptions& o)
 {
   study::ConvergenceInputs inputs;
-  inputs.build = pipeline::load_build_config(o.study.model_config);
   inputs.flexion = flexion_settings(o.study);
+  inputs.model = study_model(o.study, inputs.flexion, "study convergence");
   inputs.ladder = o.ladder;
   inputs.out = o.study.out;
   inputs.png = !o.study.no_png;
@@ -124,7 +162,9 @@ void run_convergence(const ConvergenceOptions& o)
                  {"voxel_mesh_scale", inputs.ladder.voxel_mesh_scale},
                  {"time_steps_s", inputs.ladder.time_steps_s},
                  {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales}},
-                inputs.flexion.angles_deg, [&] { return study::run_convergence_study(inputs); });
+                inputs.flexion.angles_deg,
+                study::ligament_names(inputs.model, inputs.flexion.ligament.name),
+                [&] { return study::run_convergence_study(inputs); });
 }
 
 struct SensitivityOptions {
@@ -135,8 +175,8 @@ struct SensitivityOptions {
 void run_sensitivity(const SensitivityOptions& o)
 {
   study::SensitivityInputs inputs;
-  inputs.build = pipeline::load_build_config(o.study.model_config);
   inputs.flexion = flexion_settings(o.study);
+  inputs.model = study_model(o.study, inputs.flexion, "study sensitivity");
   inputs.settings = o.settings;
   inputs.out = o.study.out;
   inputs.png = !o.study.no_png;
@@ -156,11 +196,14 @@ void run_sensitivity(const SensitivityOptions& o)
                  {"alphas", s.alphas},
                  {"tibia_end_length_mm", s.tibia_end_length_mm},
                  {"factors", s.factors}},
-                inputs.flexion.angles_deg, [&] { return study::run_sensitivity_study(inputs); });
+                inputs.flexion.angles_deg,
+                study::ligament_names(inputs.model, inputs.flexion.ligament.name),
+                [&] { return study::run_sensitivity_study(inputs); });
 }
 
 struct CohortOptions {
   std::vector<std::string> members;
+  std::vector<std::string> ligaments;
   fs::path out;
   bool no_png = false;
 };
@@ -180,7 +223,8 @@ void run_cohort(const CohortOptions& o)
   std::optional<sim::OffscreenDisplay> display;
   if (!o.no_png)
     display.emplace();
-  summary.results() = study::write_cohort_table(members, o.out, !o.no_png);
+  summary.parameters()["ligaments"] = o.ligaments;
+  summary.results() = study::write_cohort_table(members, o.out, !o.no_png, o.ligaments);
   summary.add_stage("cohort", meter);
   summary.write(o.out);
   log_info(fmt::format("table: {}", (o.out / "cohort.md").string()));
@@ -277,7 +321,9 @@ void add_study_command(CLI::App& app)
   auto variant_options = std::make_shared<VariantOptions>();
   auto* variant = study->add_subcommand(
       "variant", "one segmentation variant as a surface file with the attachment areas as flags");
-  variant->add_option("--model-config", variant_options->model_config, "build config (.toml)")
+  variant
+      ->add_option("--model-config", variant_options->model_config,
+                   "one ligament's build config (.toml)")
       ->required()
       ->check(CLI::ExistingFile);
   variant->add_option("--kind", variant_options->kind, "offset, smooth, rough or areas")
@@ -298,6 +344,10 @@ void add_study_command(CLI::App& app)
       ->add_option("--member", cohort_options->members,
                    "NAME=FLEXION_DIR: a member and its `ligsim flexion` output folder (repeatable)")
       ->required();
+  cohort
+      ->add_option("--ligaments", cohort_options->ligaments,
+                   "the ligaments to tabulate, by name (default: every member's all)")
+      ->delimiter(',');
   cohort->add_option("--out", cohort_options->out, "output folder")->required();
   cohort->add_flag("--no-png", cohort_options->no_png, "plot as SVG only (no X server needed)");
   cohort->callback([cohort_options] { run_cohort(*cohort_options); });

@@ -70,25 +70,28 @@ nlohmann::json to_json(const KneeConfig& knee)
           {"ligaments", ligaments}};
 }
 
-void build_knee(const KneeConfig& knee, const fs::path& dir, const std::string& target, bool force,
-                RunSummary& summary)
+void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,
+                         const fs::path& dir, const std::string& target, bool force,
+                         RunSummary& summary)
 {
-  ensure_directory(dir);
+  log_info(fmt::format("ligament {}", ligament.name));
+  RunSummary own(target == "model" ? "build" : target);
+  own.inputs() = {{"config", knee.file.string()},
+                  {"ligament", ligament.name},
+                  {"surface", ligament.build.surface.string()},
+                  {"femur", ligament.build.femur.string()},
+                  {ligament.distal_bone, ligament.build.tibia.string()}};
+  own.parameters() = to_json(ligament.build);
+  run_target(ligament.build, dir / ligament.name, target, force, own);
+  own.write(dir / ligament.name);
+  for (const auto& [stage, entry] : own.json()["stages"].items())
+    summary.stage(ligament.name + "/" + stage) = entry;
+}
+
+void write_knee_files(const KneeConfig& knee, const fs::path& dir)
+{
   KneeManifest manifest;
   for (const LigamentConfig& ligament : knee.ligaments) {
-    log_info(fmt::format("ligament {}", ligament.name));
-    RunSummary own(target == "model" ? "build" : target);
-    own.inputs() = {{"config", knee.file.string()},
-                    {"ligament", ligament.name},
-                    {"surface", ligament.build.surface.string()},
-                    {"femur", ligament.build.femur.string()},
-                    {ligament.distal_bone, ligament.build.tibia.string()}};
-    own.parameters() = to_json(ligament.build);
-    run_target(ligament.build, dir / ligament.name, target, force, own);
-    own.write(dir / ligament.name);
-    for (const auto& [stage, entry] : own.json()["stages"].items())
-      summary.stage(ligament.name + "/" + stage) = entry;
-
     KneeLigament entry;
     entry.name = ligament.name;
     entry.folder = ligament.name;
@@ -101,11 +104,19 @@ void build_knee(const KneeConfig& knee, const fs::path& dir, const std::string& 
     entry.contact_bones = ligament.contact_bones;
     manifest.ligaments.push_back(entry);
   }
-  if (target != "model")
-    return;
   manifest.bones = write_bones(knee, dir);
   write_text_atomically(dir / knee_anatomy_file, to_json(knee_anatomy(knee.shared)).dump(2) + "\n");
   write_text_atomically(dir / knee_manifest_file, to_json(manifest).dump(2) + "\n");
+}
+
+void build_knee(const KneeConfig& knee, const fs::path& dir, const std::string& target, bool force,
+                RunSummary& summary)
+{
+  ensure_directory(dir);
+  for (const LigamentConfig& ligament : knee.ligaments)
+    build_knee_ligament(knee, ligament, dir, target, force, summary);
+  if (target == "model")
+    write_knee_files(knee, dir);
 }
 
 } // namespace ligsim::pipeline

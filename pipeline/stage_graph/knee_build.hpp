@@ -18,10 +18,19 @@ namespace ligsim::pipeline {
 
 /// Runs `target` and the stages it needs for every ligament of `knee`, in <dir>/<name>/ (each
 /// with its own summary.json), records each ligament's stages in `summary` as "<name>/<stage>"
-/// and, when `target` is "model", writes the knee's files in `dir`: femur.vtp, tibia.vtp,
-/// fibula.vtp (if given), anatomy.json and knee.json.
+/// and, when `target` is "model", writes the knee's files in `dir` (write_knee_files).
 void build_knee(const KneeConfig& knee, const std::filesystem::path& dir, const std::string& target,
                 bool force, RunSummary& summary);
+
+/// One ligament of `knee` as build_knee builds it: its stages in <dir>/<name>/ with its own
+/// summary.json, recorded in `summary` as "<name>/<stage>". Throws what the stages throw.
+void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,
+                         const std::filesystem::path& dir, const std::string& target, bool force,
+                         RunSummary& summary);
+
+/// The knee's own files in `dir`: femur.vtp, tibia.vtp, fibula.vtp (if given), anatomy.json and
+/// knee.json, which lists the ligaments of `knee` (each built in <dir>/<name>/).
+void write_knee_files(const KneeConfig& knee, const std::filesystem::path& dir);
 
 /// Every parameter of the knee, as JSON (summary.json): per ligament as to_json(BuildConfig).
 nlohmann::json to_json(const KneeConfig& knee);

@@ -35,9 +35,11 @@ struct RunSpec {
   double time_step_s = 0.0; ///< 0: quasi-static
 };
 
+/// One ligament in one run of the ladders.
 struct Run {
   RunSpec spec;
-  BuiltModel model;
+  std::string ligament;
+  BuiltLigament build;
   FlexionFigures flexion;
   std::string failure; ///< empty when the run reached every angle
   std::array<double, 4> worst_vs_reference{};
@@ -66,6 +68,17 @@ pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double th
       scaled(base.tetmesh.facet_distance_mm, thickness_mm / 20.0, mesh_scale);
   config.voxelize.spacing_mm = scaled(base.voxelize.spacing_mm, thickness_mm / 8.0, voxel_scale);
   return config;
+}
+
+/// Every ligament's sizes scaled from its own (`thickness_mm` per ligament).
+StudyModel scaled_model(const StudyModel& base, const std::vector<double>& thickness_mm,
+                        double mesh_scale, double voxel_scale)
+{
+  StudyModel model = base;
+  for (std::size_t l = 0; l < model.config.ligaments.size(); ++l)
+    model.config.ligaments[l].build =
+        scaled_config(base.config.ligaments[l].build, thickness_mm[l], mesh_scale, voxel_scale);
+  return model;
 }
 
 /// Seconds of solve per displayed frame: an implicit Euler frame, or one angle's equilibrium.
@@ -120,15 +133,17 @@ std::map<double, double> extrapolated_energy(const std::vector<const Run*>& mesh
   return energies;
 }
 
-void write_tables(const std::vector<Run>& runs, const fs::path& out, const std::string& reference)
+/// The table rows of every ligament's runs, a ligament after the other.
+void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out,
+                  const std::string& reference)
 {
-  std::string csv = "family,mesh_scale,voxel_scale,mode,time_step_s,tets,build_s,build_peak_mib,"
-                    "solve_s,solve_peak_mib,frames,s_per_frame,frames_per_second,"
+  std::string csv = "ligament,family,mesh_scale,voxel_scale,mode,time_step_s,tets,build_s,"
+                    "build_peak_mib,solve_s,solve_peak_mib,frames,s_per_frame,frames_per_second,"
                     "energy_error,mean_strain_error,p95_strain_error,femur_force_error,"
                     "energy_error_vs_family,mean_strain_error_vs_family,"
                     "p95_strain_error_vs_family,femur_force_error_vs_family,"
                     "energy_error_vs_extrapolated,failure\n";
-  std::string angles_csv = "family,mesh_scale,voxel_scale,time_step_s,tets,angle_deg,"
+  std::string angles_csv = "ligament,family,mesh_scale,voxel_scale,time_step_s,tets,angle_deg,"
                            "strain_energy_mj,mean_fiber_stretch,p95_fiber_stretch,"
                            "max_fiber_stretch,femur_force_n,energy_error,mean_strain_error,"
                            "p95_strain_error,femur_force_error\n";
@@ -138,53 +153,57 @@ void write_tables(const std::vector<Run>& runs, const fs::path& out, const std::
       "Euler frame, or one angle's equilibrium (quasi-static). The paper: 15 frames per second "
       "(0.067 s per frame) for 5,911 tets. No contact (the ligament may pass through the "
       "bones).\n\n"
-      "| family | tets | voxel scale | dt s | build s | solve s | s per frame | peak MiB | "
-      "energy | mean strain | p95 strain | femur force | energy vs Richardson |\n"
-      "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-      "|\n",
+      "| ligament | family | tets | voxel scale | dt s | build s | solve s | s per frame | peak "
+      "MiB | energy | mean strain | p95 strain | femur force | energy vs Richardson |\n"
+      "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
+      "---: |\n",
       reference);
-  for (const Run& run : runs) {
-    const bool interactive = run.spec.time_step_s > 0.0;
-    const auto& r = run.worst_vs_reference;
-    const auto& f = run.worst_vs_family;
-    csv += fmt::format(
-        "{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:."
-        "6g},{:.6g},{:.6g},"
-        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
-        csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
-        interactive ? "interactive" : "static", run.spec.time_step_s, run.flexion.tets,
-        run.model.build_s, run.model.peak_rss_mib, run.flexion.solve_s, run.flexion.peak_rss_mib,
-        run.flexion.frames, seconds_per_frame(run), run.flexion.frames_per_second, r[0], r[1], r[2],
-        r[3], f[0], f[1], f[2], f[3], run.energy_error_vs_extrapolated, csv_quoted(run.failure));
-    for (const AngleFigures& a : run.flexion.angles) {
-      std::array<double, 4> e;
-      e.fill(kNaN);
-      for (const AngleErrors& row : run.errors)
-        if (std::abs(row.angle_deg - a.angle_deg) < 1e-9)
-          e = row.error;
-      angles_csv +=
-          fmt::format("{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                      "{:.6g},{:.6g}\n",
-                      csv_quoted(run.spec.family), run.spec.mesh_scale, run.spec.voxel_scale,
-                      run.spec.time_step_s, run.flexion.tets, a.angle_deg, a.strain_energy_mj,
-                      a.mean_fiber_stretch, a.p95_fiber_stretch, a.max_fiber_stretch,
-                      a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
+  for (const std::vector<Run>& ligament_runs : runs)
+    for (const Run& run : ligament_runs) {
+      const bool interactive = run.spec.time_step_s > 0.0;
+      const auto& r = run.worst_vs_reference;
+      const auto& f = run.worst_vs_family;
+      csv += fmt::format(
+          "{},{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:.6g},{:.6g},"
+          "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
+          csv_quoted(run.ligament), csv_quoted(run.spec.family), run.spec.mesh_scale,
+          run.spec.voxel_scale, interactive ? "interactive" : "static", run.spec.time_step_s,
+          run.flexion.tets, run.build.build_s, run.build.peak_rss_mib, run.flexion.solve_s,
+          run.flexion.peak_rss_mib, run.flexion.frames, seconds_per_frame(run),
+          run.flexion.frames_per_second, r[0], r[1], r[2], r[3], f[0], f[1], f[2], f[3],
+          run.energy_error_vs_extrapolated, csv_quoted(run.failure));
+      for (const AngleFigures& a : run.flexion.angles) {
+        std::array<double, 4> e;
+        e.fill(kNaN);
+        for (const AngleErrors& row : run.errors)
+          if (std::abs(row.angle_deg - a.angle_deg) < 1e-9)
+            e = row.error;
+        angles_csv +=
+            fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                        "{:.6g},{:.6g}\n",
+                        csv_quoted(run.ligament), csv_quoted(run.spec.family), run.spec.mesh_scale,
+                        run.spec.voxel_scale, run.spec.time_step_s, run.flexion.tets, a.angle_deg,
+                        a.strain_energy_mj, a.mean_fiber_stretch, a.p95_fiber_stretch,
+                        a.max_fiber_stretch, a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
+      }
+      md += fmt::format(
+          "| {} | {} | {} | {:g} | {} | {:.2f} | {:.2f} | {:.4f} | {:.0f} | {} | {} | {} | "
+          "{} | {} |\n",
+          run.ligament, run.spec.family + (run.failure.empty() ? "" : " (failed)"),
+          run.flexion.tets, run.spec.voxel_scale,
+          interactive ? fmt::format("{:g}", run.spec.time_step_s) : "", run.build.build_s,
+          run.flexion.solve_s, seconds_per_frame(run),
+          std::max(run.build.peak_rss_mib, run.flexion.peak_rss_mib), percent(r[0]), percent(r[1]),
+          percent(r[2]), percent(r[3]), percent(run.energy_error_vs_extrapolated));
     }
-    md += fmt::format(
-        "| {} | {} | {:g} | {} | {:.2f} | {:.2f} | {:.4f} | {:.0f} | {} | {} | {} | "
-        "{} | {} |\n",
-        run.spec.family + (run.failure.empty() ? "" : " (failed)"), run.flexion.tets,
-        run.spec.voxel_scale, interactive ? fmt::format("{:g}", run.spec.time_step_s) : "",
-        run.model.build_s, run.flexion.solve_s, seconds_per_frame(run),
-        std::max(run.model.peak_rss_mib, run.flexion.peak_rss_mib), percent(r[0]), percent(r[1]),
-        percent(r[2]), percent(r[3]), percent(run.energy_error_vs_extrapolated));
-  }
   write_text_atomically(out / "convergence.csv", csv);
   write_text_atomically(out / "convergence_angles.csv", angles_csv);
   write_text_atomically(out / "convergence.md", md);
 }
 
-void write_convergence_plot(const std::vector<Run>& runs, const fs::path& out, bool png)
+/// One curve per family (per ligament and family in a knee).
+void write_convergence_plot(const std::vector<std::vector<Run>>& runs, const fs::path& out,
+                            bool png)
 {
   PlotSpec spec;
   spec.title = "Knee flexion: error against run time";
@@ -195,22 +214,25 @@ void write_convergence_plot(const std::vector<Run>& runs, const fs::path& out, b
   std::map<std::string, PlotSeries> families;
   std::vector<std::string> order;
   double low = INFINITY, high = 0.0;
-  for (const Run& run : runs) {
-    if (!run.failure.empty())
-      continue;
-    if (!families.count(run.spec.family))
-      order.push_back(run.spec.family);
-    PlotSeries& series = families[run.spec.family];
-    series.name = run.spec.family;
-    const double error = 100.0 * run.worst_vs_reference[0];
-    series.x.push_back(seconds_per_frame(run));
-    series.y.push_back(error);
-    series.point_labels.push_back(fmt::format("{}", run.flexion.tets));
-    if (std::isfinite(error) && error > 0.0) {
-      low = std::min(low, error);
-      high = std::max(high, error);
+  for (const std::vector<Run>& ligament_runs : runs)
+    for (const Run& run : ligament_runs) {
+      if (!run.failure.empty())
+        continue;
+      const std::string name =
+          runs.size() > 1 ? run.ligament + ": " + run.spec.family : run.spec.family;
+      if (!families.count(name))
+        order.push_back(name);
+      PlotSeries& series = families[name];
+      series.name = name;
+      const double error = 100.0 * run.worst_vs_reference[0];
+      series.x.push_back(seconds_per_frame(run));
+      series.y.push_back(error);
+      series.point_labels.push_back(fmt::format("{}", run.flexion.tets));
+      if (std::isfinite(error) && error > 0.0) {
+        low = std::min(low, error);
+        high = std::max(high, error);
+      }
     }
-  }
   for (const std::string& name : order) {
     PlotSeries& s = families[name];
     // Sorted by time, so that a curve runs left to right.
@@ -238,6 +260,46 @@ void write_convergence_plot(const std::vector<Run>& runs, const fs::path& out, b
   write_plot(spec, out / "convergence", png);
 }
 
+/// The errors of one ligament's runs: against the reference, its family's reference and the
+/// extrapolation. `sweeps` holds every sweep by key, every ligament's figures.
+void compare_runs(std::vector<Run>& runs, const std::string& ligament,
+                  const std::map<std::string, std::vector<FlexionFigures>>& sweeps,
+                  const FlexionFigures& reference, const std::string& finest_voxel_key,
+                  nlohmann::json& report)
+{
+  std::vector<const Run*> mesh_runs;
+  for (const Run& run : runs)
+    if (run.spec.family == "quasi-static, mesh" && run.failure.empty())
+      mesh_runs.push_back(&run);
+  const std::map<double, double> extrapolated = extrapolated_energy(mesh_runs, report);
+  const auto sweep_of = [&](const std::string& key) -> const FlexionFigures* {
+    const auto found = sweeps.find(key);
+    return found != sweeps.end() ? figures_of(found->second, ligament) : nullptr;
+  };
+
+  for (Run& run : runs) {
+    run.errors = angle_errors(run.flexion, reference);
+    run.worst_vs_reference = worst_errors(run.errors);
+    // The family's own reference isolates its parameter: the finest voxel at the same mesh, the
+    // quasi-static run on the same mesh for the interactive runs.
+    const FlexionFigures* family = &reference;
+    if (run.spec.family == "quasi-static, voxel")
+      family = sweep_of(finest_voxel_key);
+    else if (run.spec.time_step_s > 0.0)
+      family = sweep_of(model_name(run.spec.mesh_scale, 1.0) + "-0");
+    run.worst_vs_family.fill(kNaN);
+    if (family)
+      run.worst_vs_family = worst_errors(angle_errors(run.flexion, *family));
+    if (!extrapolated.empty() && run.failure.empty()) {
+      double worst = 0.0;
+      for (const AngleFigures& a : run.flexion.angles)
+        if (const auto e = extrapolated.find(a.angle_deg); e != extrapolated.end())
+          worst = std::max(worst, std::abs(a.strain_energy_mj - e->second) / std::abs(e->second));
+      run.energy_error_vs_extrapolated = worst;
+    }
+  }
+}
+
 } // namespace
 
 double ligament_thickness_mm(const pipeline::BuildConfig& config)
@@ -251,7 +313,10 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   const ConvergenceLadder& ladder = inputs.ladder;
   if (ladder.mesh_scales.empty())
     fail("study convergence: the mesh ladder is empty");
-  const double thickness = ligament_thickness_mm(inputs.build);
+  const std::vector<std::string> names = ligament_names(inputs.model, inputs.flexion.ligament.name);
+  std::vector<double> thickness;
+  for (const pipeline::LigamentConfig& ligament : inputs.model.config.ligaments)
+    thickness.push_back(ligament_thickness_mm(ligament.build));
   std::vector<double> mesh_scales = ladder.mesh_scales;
   std::sort(mesh_scales.rbegin(), mesh_scales.rend()); // coarse to fine
   std::vector<double> voxel_scales = ladder.voxel_scales;
@@ -271,27 +336,26 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   }
 
   // One model per (mesh, voxel) and one flexion per (model, mode, dt): shared between families.
+  // Each sweep holds every ligament's figures, in the order of `names`.
   std::map<std::string, BuiltModel> models;
-  std::map<std::string, std::pair<FlexionFigures, std::string>> sweeps;
-  std::vector<Run> runs;
+  std::map<std::string, std::vector<FlexionFigures>> sweeps;
+  std::vector<std::vector<Run>> runs(names.size()); // per ligament
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const RunSpec& spec = specs[i];
-    Run run;
-    run.spec = spec;
     const std::string name = model_name(spec.mesh_scale, spec.voxel_scale);
     const std::string sweep_key = fmt::format("{}-{:g}", name, spec.time_step_s);
     log_info(fmt::format("study convergence: run {} of {}: {} ({}{})", i + 1, specs.size(),
                          spec.family, name,
                          spec.time_step_s > 0 ? fmt::format(", dt {:g} s", spec.time_step_s) : ""));
+    std::string failure; // of the build or the setup: every ligament's
     try {
       if (!models.count(name))
         models[name] =
-            build_model(scaled_config(inputs.build, thickness, spec.mesh_scale, spec.voxel_scale),
+            build_model(scaled_model(inputs.model, thickness, spec.mesh_scale, spec.voxel_scale),
                         inputs.out / "models" / name);
-      run.model = models[name];
-      if (!sweeps.count(sweep_key)) {
+      if (!sweeps.count(sweep_key) && models[name].any_built()) {
         sim::FlexionSettings settings = inputs.flexion;
-        settings.model_dir = run.model.dir;
+        settings.model_dir = models[name].dir;
         settings.images = false;
         if (spec.time_step_s > 0.0) {
           settings.mode = sim::FlexionMode::interactive;
@@ -299,79 +363,91 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
         } else {
           settings.mode = sim::FlexionMode::quasi_static;
         }
-        FlexionFigures figures = run_flexion(settings);
-        sweeps[sweep_key] = {figures, figures.success ? "" : figures.failure};
+        sweeps[sweep_key] = run_flexion(settings);
       }
-      run.flexion = sweeps[sweep_key].first;
-      run.failure = sweeps[sweep_key].second;
     } catch (const Error& e) {
-      run.failure = e.what();
+      failure = e.what();
     }
-    if (!run.failure.empty())
-      log_info(fmt::format("study convergence: {} failed: {}", name, run.failure));
-    runs.push_back(run);
+    for (std::size_t l = 0; l < names.size(); ++l) {
+      Run run;
+      run.spec = spec;
+      run.ligament = names[l];
+      if (const auto model = models.find(name); model != models.end())
+        run.build = model->second.ligaments.at(l);
+      run.failure = failure.empty() ? run.build.failure : failure;
+      const auto sweep = sweeps.find(sweep_key);
+      if (run.failure.empty() && sweep != sweeps.end())
+        if (const FlexionFigures* figures = figures_of(sweep->second, names[l])) {
+          run.flexion = *figures;
+          run.failure = figures->success ? "" : figures->failure;
+        }
+      if (!run.failure.empty())
+        log_info(fmt::format("study convergence: {}{} failed: {}",
+                             names.size() > 1 ? names[l] + " in " : "", name, run.failure));
+      runs[l].push_back(run);
+    }
   }
 
-  // The reference: the finest quasi-static mesh.
+  // The reference: the finest quasi-static mesh, every ligament's.
   const std::string reference_key = model_name(finest_mesh, 1.0) + "-0";
-  if (!sweeps.count(reference_key) || !sweeps[reference_key].second.empty())
-    fail<SolverError>("study convergence: the reference run ({}) failed: {}", reference_key,
-                      sweeps.count(reference_key) ? sweeps[reference_key].second : "not run");
-  const FlexionFigures& reference = sweeps[reference_key].first;
-  const auto finest_voxel =
-      sweeps.find(model_name(1.0, voxel_scales.empty() ? 1.0 : voxel_scales.back()) + "-0");
+  const auto reference = sweeps.find(reference_key);
+  const auto reference_of = [&](std::size_t l) {
+    return reference == sweeps.end() ? nullptr : figures_of(reference->second, names[l]);
+  };
+  for (std::size_t l = 0; l < names.size(); ++l) {
+    if (reference_of(l) && reference_of(l)->success)
+      continue;
+    std::string failure = "not run";
+    for (const Run& run : runs[l])
+      if (run.spec.family == "quasi-static, mesh" && run.spec.mesh_scale == finest_mesh)
+        failure = run.failure;
+    fail<SolverError>("study convergence: the reference run ({}{}) failed: {}", reference_key,
+                      names.size() > 1 ? ", " + names[l] : "", failure);
+  }
+  const std::string finest_voxel_key =
+      model_name(1.0, voxel_scales.empty() ? 1.0 : voxel_scales.back()) + "-0";
 
   nlohmann::json report;
-  std::vector<const Run*> mesh_runs;
-  for (const Run& run : runs)
-    if (run.spec.family == "quasi-static, mesh" && run.failure.empty())
-      mesh_runs.push_back(&run);
-  const std::map<double, double> extrapolated = extrapolated_energy(mesh_runs, report);
-
-  for (Run& run : runs) {
-    run.errors = angle_errors(run.flexion, reference);
-    run.worst_vs_reference = worst_errors(run.errors);
-    // The family's own reference isolates its parameter: the finest voxel at the same mesh, the
-    // quasi-static run on the same mesh for the interactive runs.
-    const FlexionFigures* family = &reference;
-    if (run.spec.family == "quasi-static, voxel")
-      family = finest_voxel != sweeps.end() ? &finest_voxel->second.first : nullptr;
-    else if (run.spec.time_step_s > 0.0) {
-      const auto own = sweeps.find(model_name(run.spec.mesh_scale, 1.0) + "-0");
-      family = own != sweeps.end() ? &own->second.first : nullptr;
-    }
-    run.worst_vs_family.fill(kNaN);
-    if (family)
-      run.worst_vs_family = worst_errors(angle_errors(run.flexion, *family));
-    if (!extrapolated.empty() && run.failure.empty()) {
-      double worst = 0.0;
-      for (const AngleFigures& a : run.flexion.angles)
-        if (const auto e = extrapolated.find(a.angle_deg); e != extrapolated.end())
-          worst = std::max(worst, std::abs(a.strain_energy_mj - e->second) / std::abs(e->second));
-      run.energy_error_vs_extrapolated = worst;
-    }
+  nlohmann::json ligaments = nlohmann::json::array();
+  int reference_tets = 0;
+  std::string reference_text = "quasi-static";
+  for (std::size_t l = 0; l < names.size(); ++l) {
+    const FlexionFigures& own = *reference_of(l);
+    nlohmann::json entry = {
+        {"ligament", names[l]}, {"thickness_mm", thickness[l]}, {"reference_tets", own.tets}};
+    compare_runs(runs[l], names[l], sweeps, own, finest_voxel_key, entry);
+    ligaments.push_back(entry);
+    reference_tets += own.tets;
+    reference_text += names.size() > 1 ? fmt::format(", {} {} tets", names[l], own.tets)
+                                       : fmt::format(", {} tets", own.tets);
   }
-
-  const std::string reference_text = fmt::format("quasi-static, {} tets", reference.tets);
   write_tables(runs, inputs.out, reference_text);
   write_convergence_plot(runs, inputs.out, inputs.png);
 
-  report["reference"] = {{"tets", reference.tets}, {"model", reference_key}};
-  report["thickness_mm"] = thickness;
+  report["reference"] = {{"tets", reference_tets}, {"model", reference_key}};
+  report["ligaments"] = ligaments;
+  if (!inputs.model.knee) { // a one-ligament model: its figures at the top, as before knees
+    report["thickness_mm"] = thickness.front();
+    if (ligaments.front().contains("richardson_energy"))
+      report["richardson_energy"] = ligaments.front()["richardson_energy"];
+  }
   nlohmann::json entries = nlohmann::json::array();
-  for (const Run& run : runs)
-    entries.push_back({{"family", run.spec.family},
-                       {"mesh_scale", run.spec.mesh_scale},
-                       {"voxel_scale", run.spec.voxel_scale},
-                       {"time_step_s", run.spec.time_step_s},
-                       {"tets", run.flexion.tets},
-                       {"build_s", run.model.build_s},
-                       {"solve_s", run.flexion.solve_s},
-                       {"seconds_per_frame", seconds_per_frame(run)},
-                       {"peak_rss_mib", std::max(run.model.peak_rss_mib, run.flexion.peak_rss_mib)},
-                       {"energy_error", run.worst_vs_reference[0]},
-                       {"femur_force_error", run.worst_vs_reference[3]},
-                       {"failure", run.failure}});
+  for (const std::vector<Run>& ligament_runs : runs)
+    for (const Run& run : ligament_runs)
+      entries.push_back(
+          {{"ligament", run.ligament},
+           {"family", run.spec.family},
+           {"mesh_scale", run.spec.mesh_scale},
+           {"voxel_scale", run.spec.voxel_scale},
+           {"time_step_s", run.spec.time_step_s},
+           {"tets", run.flexion.tets},
+           {"build_s", run.build.build_s},
+           {"solve_s", run.flexion.solve_s},
+           {"seconds_per_frame", seconds_per_frame(run)},
+           {"peak_rss_mib", std::max(run.build.peak_rss_mib, run.flexion.peak_rss_mib)},
+           {"energy_error", run.worst_vs_reference[0]},
+           {"femur_force_error", run.worst_vs_reference[3]},
+           {"failure", run.failure}});
   report["runs"] = entries;
   return report;
 }

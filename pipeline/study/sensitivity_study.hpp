@@ -3,9 +3,11 @@
 /// segmentation changes as a second rater or another MRI would change it (the ligament paper's
 /// closing remark). One factor at a time from the source segmentation: the surface moved in and
 /// out, smoothed and roughened, the attachment areas grown and shrunk, the attachment rule
-/// changed, the centerline's alpha; each variant is built and swept quasi-statically.
+/// changed, the centerline's alpha; each variant is built and swept quasi-statically. In a knee
+/// every ligament is changed the same way at once (they do not touch in the sweep, so each
+/// ligament's figures are its own variant's) and reported on its own.
 
-#include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/study/study_model.hpp"
 #include "sim/flexion/flexion_settings.hpp"
 
 #include <nlohmann/json.hpp>
@@ -35,27 +37,18 @@ struct SensitivitySettings {
 const std::vector<std::string>& sensitivity_factor_names();
 
 struct SensitivityInputs {
-  pipeline::BuildConfig build;
+  StudyModel model;
   sim::FlexionSettings flexion; ///< quasi-static; its model_dir is ignored
   SensitivitySettings settings;
   std::filesystem::path out;
   bool png = true;
 };
 
-/// One segmentation variant as files, for `ligsim build --surface FILE --femur-rule array
-/// --femur-array study_femur_area --tibia-rule array --tibia-array study_tibia_area`: the
-/// ligament surface of `config` changed by `kind` ("offset": moved `amount` mm along its
-/// normals; "smooth": `amount` Taubin iterations; "rough": bumps of rms `amount` mm; "areas":
-/// attachment areas grown (+) or shrunk (-) by `amount` mm) with the config's attachment areas
-/// as point-data flags, written to `folder`/surface.vtp. Returns the file.
-std::filesystem::path write_surface_variant(const pipeline::BuildConfig& config,
-                                            const std::string& kind, double amount,
-                                            const std::filesystem::path& folder);
-
-/// Builds every variant into out/models/<name> (surfaces in out/variants/<name>), sweeps it, and
-/// writes sensitivity.csv (variant x angle), sensitivity.md (figures per variant at the last
-/// angle, the spread: min / median / max, and per factor the largest change and its share of
-/// the spread) and sensitivity.png / .svg (largest femur force change against angle per factor).
+/// Builds every variant into out/models/<name> (surfaces in out/variants/<name>, a knee's in
+/// out/variants/<name>/<ligament>), sweeps it, and writes sensitivity.csv (ligament x variant x
+/// angle), sensitivity.md (per ligament: figures per variant at the last angle, the spread: min /
+/// median / max, and per factor the largest change and its share of the spread) and
+/// sensitivity.png / .svg (largest femur force change against angle per ligament and factor).
 /// Returns the figures for summary.json. A variant that fails to build or solve is reported; the
 /// study fails only when the baseline does.
 nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs);

@@ -4,9 +4,8 @@
 /// answer it gets alone.
 
 #include "common/vtk_files.hpp"
-#include "stages/io/vtk_convert.hpp"
-#include "stages/synthetic/shapes.hpp"
 #include "tests/pipeline/cli_runner.hpp"
+#include "tests/pipeline/knee_fixture.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -33,14 +32,6 @@ std::vector<std::string> cells(const std::string& line)
   if (!line.empty() && line.back() == ',')
     result.emplace_back();
   return result;
-}
-
-/// A straight ligament, radius 1.5 mm, from z = 0 to z = 16 at (x, 0).
-void write_ligament(double x, const fs::path& file)
-{
-  synthetic::Shape shape = synthetic::cylinder(1.5, 16.0, 24);
-  shape.surface.V.col(0).array() += x;
-  write_vtk(io::to_polydata(shape.surface), file);
 }
 
 /// The knee's config: ligaments A (x = -6) and B (x = 6) on the tibia, C (x = 13) on the fibula;
@@ -72,12 +63,10 @@ const fs::path& knee_inputs()
   static const fs::path dir = [] {
     const fs::path d = fresh_folder("knee_inputs_" + std::to_string(::getpid()));
     fs::create_directories(d);
-    write_vtk(io::to_polydata(synthetic::box({-15, -10, 16.2}, {20, 10, 30})), d / "femur.vtp");
-    write_vtk(io::to_polydata(synthetic::box({-15, -10, -14}, {9, 10, -0.2})), d / "tibia.vtp");
-    write_vtk(io::to_polydata(synthetic::box({10, -5, -14}, {16, 5, -0.2})), d / "fibula.vtp");
-    write_ligament(-6.0, d / "A.vtp");
-    write_ligament(6.0, d / "B.vtp");
-    write_ligament(13.0, d / "C.vtp");
+    write_knee_bones(d);
+    write_straight_ligament(1.5, -6.0, d / "A.vtp");
+    write_straight_ligament(1.5, 6.0, d / "B.vtp");
+    write_straight_ligament(1.5, 13.0, d / "C.vtp");
     std::ofstream(d / "knee.toml") << knee_config(1.0);
     return d;
   }();
