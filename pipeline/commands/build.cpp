@@ -200,7 +200,11 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target)
         std::pair{"--ligament-label", o.ligament_label}})
     if (!value.empty())
       fail("{} describes a knee: its surfaces come from the config, not from {}", o.config, flag);
-  pipeline::KneeConfig knee = pipeline::load_knee_config(o.config);
+  const fs::path out = o.out;
+  // Surfaces from a label map are written only once all of them could be made.
+  nlohmann::json label_report;
+  pipeline::KneeConfig knee =
+      pipeline::knee_surfaces_from_labels(pipeline::load_knee_config(o.config), out, label_report);
   // Every input is read before a stage runs, so that bad input leaves nothing behind.
   nlohmann::json repairs = nlohmann::json::object();
   for (pipeline::LigamentConfig& ligament : knee.ligaments) {
@@ -223,12 +227,13 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target)
     bone_repair[bone] = repair::to_json(report);
   }
 
-  const fs::path out = o.out;
   RunSummary summary(target == "model" ? "build" : target);
   summary.inputs() = {{"config", o.config}, {"knee", true}};
   summary.parameters() = pipeline::to_json(knee);
   summary.results()["surface_repair"] = repairs;
   summary.results()["bone_repair"] = bone_repair;
+  if (!label_report.is_null())
+    summary.results()["label_map"] = label_report;
   pipeline::build_knee(knee, out, target, o.force, summary);
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));

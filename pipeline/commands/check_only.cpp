@@ -58,7 +58,8 @@ void check_build_config(const std::string& file)
     return;
   }
   const pipeline::KneeConfig knee = pipeline::load_knee_config(file);
-  check_input_file(knee.fibula, file);
+  for (const fs::path* input : {&knee.fibula, &knee.labels, &knee.colour_table})
+    check_input_file(*input, file);
   for (const pipeline::LigamentConfig& ligament : knee.ligaments)
     check_inputs(ligament.build, file);
 }

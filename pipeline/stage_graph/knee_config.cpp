@@ -66,19 +66,30 @@ LigamentConfig read_ligament(const toml::table& table, std::size_t index, const 
   Section input(table_at(&table, "input"), prefix + "input", file);
   ligament.build.surface.clear();
   input.read_path("surface", ligament.build.surface);
+  input.read_label("label", ligament.build.ligament_label);
   input.read("strict", ligament.build.strict);
   input.reject_unknown();
-  if (ligament.build.surface.empty())
+  const bool labelled = !knee.labels.empty();
+  if (!labelled && !ligament.build.ligament_label.empty())
+    fail("{}:{}: ligament {} gives a label, but the knee's [input] gives no label map (labels)",
+         file.string(), table.source().begin.line, ligament.name);
+  if (!labelled && ligament.build.surface.empty())
     fail("{}:{}: ligament {} has no surface: give [ligament.input] surface (a file, or a glTF "
          "file with #MESH)",
          file.string(), table.source().begin.line, ligament.name);
+  if (labelled && (ligament.build.ligament_label.empty() || !ligament.build.surface.empty()))
+    fail("{}:{}: ligament {}: the knee's surfaces come from the label map {}, so give its "
+         "[ligament.input] label (a number or a name) and no surface",
+         file.string(), table.source().begin.line, ligament.name, knee.labels.string());
 
   ligament.distal_bone =
       read_attachment_sections(table, prefix, file, {"tibia", "fibula"}, ligament.build);
   read_stage_sections(table, prefix, file, ligament.build);
   read_material_section(table, prefix, file, ligament.build);
-  const fs::path& distal = ligament.distal_bone == "fibula" ? knee.fibula : knee.tibia;
-  if (distal.empty())
+  const bool fibula = ligament.distal_bone == "fibula";
+  const fs::path& distal = fibula ? knee.fibula : knee.tibia;
+  const std::string& distal_label = fibula ? knee.fibula_label : knee.tibia_label;
+  if (distal.empty() && distal_label.empty())
     fail("{}:{}: ligament {} attaches to the {}, but [input] gives no {} surface", file.string(),
          table.source().begin.line, ligament.name, ligament.distal_bone, ligament.distal_bone);
   ligament.build.tibia = distal;
@@ -112,11 +123,31 @@ KneeConfig load_knee_config(const fs::path& file)
   input.read_path("femur", knee.femur);
   input.read_path("tibia", knee.tibia);
   input.read_path("fibula", knee.fibula);
+  input.read_path("labels", knee.labels);
+  input.read_path("colour_table", knee.colour_table);
+  input.read_label("femur_label", knee.femur_label);
+  input.read_label("tibia_label", knee.tibia_label);
+  input.read_label("fibula_label", knee.fibula_label);
   input.read("strict", knee.shared.strict);
   input.reject_unknown();
-  if (knee.femur.empty() || knee.tibia.empty())
-    fail("{}: a knee config needs the femur and the tibia ([input] femur and tibia)",
+  if (!knee.labels.empty()) {
+    if (!knee.femur.empty() || !knee.tibia.empty() || !knee.fibula.empty())
+      fail("{}: [input] gives a label map (labels) and bone surfaces: give the bones' labels "
+           "(femur_label, tibia_label, fibula_label) instead of their files",
+           file.string());
+    if (knee.femur_label.empty() || knee.tibia_label.empty())
+      fail("{}: a knee from a label map needs the femur's and the tibia's labels ([input] "
+           "femur_label and tibia_label)",
+           file.string());
+  } else if (!knee.femur_label.empty() || !knee.tibia_label.empty() || !knee.fibula_label.empty() ||
+             !knee.colour_table.empty()) {
+    fail("{}: [input] gives bone labels or a colour table but no label map (labels)",
          file.string());
+  } else if (knee.femur.empty() || knee.tibia.empty()) {
+    fail("{}: a knee config needs the femur and the tibia ([input] femur and tibia, or a label "
+         "map: labels, femur_label, tibia_label)",
+         file.string());
+  }
   knee.shared.femur = knee.femur;
   knee.shared.tibia = knee.tibia;
   read_anatomy_section(root, file, knee.shared);

@@ -26,6 +26,11 @@ struct LigamentConfig {
 struct KneeConfig {
   std::filesystem::path file;
   std::filesystem::path femur, tibia, fibula; ///< fibula optional
+  /// A segmentation label map instead of surface files: the bones' labels here, each
+  /// ligament's in its build.ligament_label (numbers or names, as text); the surfaces are taken
+  /// from the map into the knee's output folder by knee_surfaces_from_labels.
+  std::filesystem::path labels, colour_table;
+  std::string femur_label, tibia_label, fibula_label;
   BuildConfig shared; ///< the bones, anatomy and stage sections before any ligament's own
   std::vector<LigamentConfig> ligaments;
 };
@@ -33,10 +38,10 @@ struct KneeConfig {
 /// Whether `file` is a knee config: a TOML file with a `ligament` array of tables.
 bool is_knee_config(const std::filesystem::path& file);
 
-/// Reads a knee config. Relative paths are relative to the file's folder. Throws InputError with
-/// the file, line and key on a syntax error, an unknown key, a value of the wrong type, a
-/// ligament without name or surface, two ligaments of one name, or a footprint on a bone the
-/// config does not give.
+/// Reads a knee config (surface files, or a label map with every part's label). Relative paths are
+/// relative to the file's folder. Throws InputError with the file, line and key on a syntax error,
+/// an unknown key, a value of the wrong type, a ligament without name or surface, two ligaments of
+/// one name, or a footprint on a bone the config does not give.
 KneeConfig load_knee_config(const std::filesystem::path& file);
 
 } // namespace ligsim::pipeline

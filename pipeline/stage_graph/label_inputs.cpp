@@ -8,7 +8,10 @@
 #include "stages/labelmap/label_surface.hpp"
 #include "stages/repair/repair.hpp"
 
+#include <fmt/format.h>
 #include <vtkPolyData.h>
+
+#include <tuple>
 
 namespace ligsim::pipeline {
 
@@ -55,7 +58,72 @@ std::vector<labelmap::LabelName> label_names(const BuildConfig& config,
   return names;
 }
 
+/// The map's frame and the sources of its names.
+nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& image,
+                        const std::vector<fs::path>& tables)
+{
+  nlohmann::json table_names = nlohmann::json::array();
+  for (const fs::path& table : tables)
+    table_names.push_back(table.string());
+  return {{"file", labels.string()},
+          {"frame", "LPS (physical coordinates as ITK reads the image)"},
+          {"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
+          {"spacing_mm", {image.spacing_mm.x(), image.spacing_mm.y(), image.spacing_mm.z()}},
+          {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
+          {"segment_names", image.segment_names.size()},
+          {"colour_tables", table_names}};
+}
+
 } // namespace
+
+nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colour_table,
+                                    const std::vector<LabelPart>& parts)
+{
+  const labelmap::LabelImage image = labelmap::read_label_image(labels);
+  std::vector<fs::path> tables;
+  BuildConfig naming;
+  naming.labels = labels;
+  naming.colour_table = colour_table;
+  const std::vector<labelmap::LabelName> names = label_names(naming, image, tables);
+  nlohmann::json report = map_json(labels, image, tables);
+  std::vector<TriangleSurface> surfaces;
+  for (const LabelPart& part : parts) {
+    labelmap::Selection selection;
+    TriangleSurface surface;
+    repair::Report repairs;
+    try {
+      const int label = labelmap::resolve_label(part.label, names, "label");
+      surface = labelmap::label_surface(image, label, &selection);
+      // Voxels joined only by an edge or a corner, and parts thinner than the smoothing keeps,
+      // give a bone's surface several shells: contact needs one.
+      if (part.bone) {
+        repair::Result repaired = repair::repair_bone(surface, "its surface");
+        surface = std::move(repaired.surface);
+        repairs = std::move(repaired.report);
+      }
+    } catch (const InputError& e) {
+      fail("label map '{}', {}: {}", labels.string(), part.name, e.what());
+    }
+    nlohmann::json& figures = report[part.name];
+    figures = selection_json(selection, surface, names);
+    if (part.bone) {
+      const auto count = [&](const char* kind) {
+        const repair::Repair* found = repairs.find(kind);
+        return found ? found->count : 0;
+      };
+      figures["dropped_inner_cavities"] = count("inner_cavities");
+      figures["dropped_stray_shells"] = count("stray_components");
+      figures["shells"] = 1 + count("inner_cavities") + count("stray_components");
+      figures["bone_repair"] = repair::to_json(repairs);
+    }
+    surfaces.push_back(std::move(surface));
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    ensure_directory(parts[i].file.parent_path());
+    write_vtk(io::to_polydata(surfaces[i]), parts[i].file);
+  }
+  return report;
+}
 
 BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
                                  nlohmann::json& report)
@@ -64,73 +132,48 @@ BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
     return config;
   if (config.ligament_label.empty())
     fail("--labels needs --ligament-label (or [input] ligament_label)");
-  const labelmap::LabelImage image = labelmap::read_label_image(config.labels);
-  std::vector<fs::path> tables;
-  const std::vector<labelmap::LabelName> names = label_names(config, image, tables);
-
-  struct Part {
-    const char* name;
-    std::string label;
-    fs::path BuildConfig::*target;
-    const char* file;
-  };
-  const Part parts[] = {
-      {"ligament", config.ligament_label, &BuildConfig::surface, ligament_from_labels},
-      {"femur", config.femur_label, &BuildConfig::femur, files::femur},
-      {"tibia", config.tibia_label, &BuildConfig::tibia, files::tibia}};
-  std::vector<std::pair<const Part*, TriangleSurface>> surfaces;
-  nlohmann::json table_names = nlohmann::json::array();
-  for (const fs::path& table : tables)
-    table_names.push_back(table.string());
-  report = {{"file", config.labels.string()},
-            {"frame", "LPS (physical coordinates as ITK reads the image)"},
-            {"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
-            {"spacing_mm", {image.spacing_mm.x(), image.spacing_mm.y(), image.spacing_mm.z()}},
-            {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
-            {"segment_names", image.segment_names.size()},
-            {"colour_tables", table_names}};
-  for (const Part& part : parts) {
-    if (part.label.empty())
-      continue;
-    labelmap::Selection selection;
-    TriangleSurface surface;
-    repair::Report repairs;
-    const bool bone = part.target != &BuildConfig::surface;
-    try {
-      const int label = labelmap::resolve_label(part.label, names, "label");
-      surface = labelmap::label_surface(image, label, &selection);
-      // Voxels joined only by an edge or a corner, and parts thinner than the smoothing keeps,
-      // give a bone's surface several shells: contact needs one.
-      if (bone) {
-        repair::Result repaired = repair::repair_bone(surface, "its surface");
-        surface = std::move(repaired.surface);
-        repairs = std::move(repaired.report);
-      }
-    } catch (const InputError& e) {
-      fail("label map '{}', {}: {}", config.labels.string(), part.name, e.what());
-    }
-    report[part.name] = selection_json(selection, surface, names);
-    if (bone) {
-      const auto count = [&](const char* kind) {
-        const repair::Repair* found = repairs.find(kind);
-        return found ? found->count : 0;
-      };
-      nlohmann::json& figures = report[part.name];
-      figures["dropped_inner_cavities"] = count("inner_cavities");
-      figures["dropped_stray_shells"] = count("stray_components");
-      figures["shells"] = 1 + count("inner_cavities") + count("stray_components");
-      figures["bone_repair"] = repair::to_json(repairs);
-    }
-    surfaces.emplace_back(&part, std::move(surface));
-  }
-
   BuildConfig result = config;
-  ensure_directory(dir);
-  for (const auto& [part, surface] : surfaces) {
-    const fs::path file = dir / part->file;
-    write_vtk(io::to_polydata(surface), file);
-    result.*(part->target) = file;
+  std::vector<LabelPart> parts;
+  for (const auto& [name, label, target, file] :
+       {std::tuple{"ligament", config.ligament_label, &BuildConfig::surface, ligament_from_labels},
+        std::tuple{"femur", config.femur_label, &BuildConfig::femur, files::femur},
+        std::tuple{"tibia", config.tibia_label, &BuildConfig::tibia, files::tibia}}) {
+    if (label.empty())
+      continue;
+    parts.push_back({name, label, target != &BuildConfig::surface, dir / file});
+    result.*target = dir / file;
   }
+  report = write_label_surfaces(config.labels, config.colour_table, parts);
+  return result;
+}
+
+KneeConfig knee_surfaces_from_labels(const KneeConfig& knee, const fs::path& dir,
+                                     nlohmann::json& report)
+{
+  if (knee.labels.empty())
+    return knee;
+  KneeConfig result = knee;
+  std::vector<LabelPart> parts;
+  for (const auto& [name, label, target] :
+       {std::tuple{"femur", knee.femur_label, &KneeConfig::femur},
+        std::tuple{"tibia", knee.tibia_label, &KneeConfig::tibia},
+        std::tuple{"fibula", knee.fibula_label, &KneeConfig::fibula}}) {
+    if (label.empty())
+      continue;
+    const fs::path file = dir / fmt::format("labels_{}.vtp", name);
+    parts.push_back({name, label, true, file});
+    result.*target = file;
+  }
+  result.shared.femur = result.femur;
+  result.shared.tibia = result.tibia;
+  for (LigamentConfig& ligament : result.ligaments) {
+    const fs::path file = dir / ligament.name / ligament_from_labels;
+    parts.push_back({"ligament " + ligament.name, ligament.build.ligament_label, false, file});
+    ligament.build.surface = file;
+    ligament.build.femur = result.femur;
+    ligament.build.tibia = ligament.distal_bone == "fibula" ? result.fibula : result.tibia;
+  }
+  report = write_label_surfaces(knee.labels, knee.colour_table, parts);
   return result;
 }
 

@@ -3,10 +3,13 @@
 /// label map, written into the output folder, where the stages read them.
 
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/knee_config.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace ligsim::pipeline {
 
@@ -24,5 +27,28 @@ inline constexpr const char* ligament_from_labels = "labels_ligament.vtp";
 /// `config`.
 BuildConfig surfaces_from_labels(const BuildConfig& config, const std::filesystem::path& dir,
                                  nlohmann::json& report);
+
+/// One surface to take from a label map.
+struct LabelPart {
+  std::string name;           ///< what it is, in messages and the report ("femur", "ligament ACL")
+  std::string label;          ///< a number or a name, as text
+  bool bone = false;          ///< repaired into one closed shell (repair::repair_bone)
+  std::filesystem::path file; ///< where its surface goes (.vtp)
+};
+
+/// Extracts every part's surface from the label map `labels` (names resolved through its segment
+/// names and `colour_table`, or every table beside the map when empty), checking all of them
+/// before writing any; then writes each to its file. Returns the report: the map's frame and,
+/// per part name, what was selected (and a bone's shells and repair).
+nlohmann::json write_label_surfaces(const std::filesystem::path& labels,
+                                    const std::filesystem::path& colour_table,
+                                    const std::vector<LabelPart>& parts);
+
+/// If `knee.labels` is set: takes the bones (labels_femur.vtp, labels_tibia.vtp,
+/// labels_fibula.vtp in `dir`) and every ligament (labels_ligament.vtp in its folder) from the
+/// label map, checking all before writing any, and returns the knee pointing at them, with what
+/// was selected in `report`. Otherwise returns `knee`.
+KneeConfig knee_surfaces_from_labels(const KneeConfig& knee, const std::filesystem::path& dir,
+                                     nlohmann::json& report);
 
 } // namespace ligsim::pipeline

@@ -24,6 +24,10 @@ StudyModel load_study_model(const fs::path& file, const std::vector<std::string>
   }
   model.knee = true;
   model.config = pipeline::load_knee_config(file);
+  if (!model.config.labels.empty())
+    fail("{}: {} takes the knee's surfaces from a label map, which the studies do not read yet: "
+         "give the surfaces `ligsim build` took from it (labels_*.vtp in its output) as files",
+         job, file.string());
   if (chosen.empty())
     return model;
   std::string names;
