@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 namespace ligsim::sim {
 
@@ -25,42 +24,35 @@ std::int64_t cell_key(const Eigen::Vector3d& p, double cell, int dx = 0, int dy 
 RegionalMean::RegionalMean(const Eigen::MatrixX3d& centroids, const Eigen::VectorXd& volumes,
                            double radius_mm)
     : m_radius_mm(radius_mm)
+    , m_centroids(centroids)
     , m_volumes(volumes)
 {
   if (!(radius_mm > 0.0) || !std::isfinite(radius_mm))
     fail("regional strain: the region radius must be a positive number of mm, not {}", radius_mm);
   if (centroids.rows() != volumes.size())
     fail("regional strain: {} centroids but {} volumes", centroids.rows(), volumes.size());
-  // Points are binned in cells of the radius, so a region lies within the 27 cells around it.
-  std::unordered_map<std::int64_t, std::vector<int>> cells;
   for (Eigen::Index e = 0; e < centroids.rows(); ++e)
-    cells[cell_key(centroids.row(e).transpose(), radius_mm)].push_back(static_cast<int>(e));
-  const double r2 = radius_mm * radius_mm;
-  m_regions.resize(static_cast<std::size_t>(centroids.rows()));
-  for (Eigen::Index e = 0; e < centroids.rows(); ++e) {
-    const Eigen::Vector3d c = centroids.row(e).transpose();
-    std::vector<int>& region = m_regions[static_cast<std::size_t>(e)];
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto found = cells.find(cell_key(c, radius_mm, dx, dy, dz));
-          if (found == cells.end())
-            continue;
-          for (int other : found->second)
-            if ((centroids.row(other).transpose() - c).squaredNorm() <= r2)
-              region.push_back(other);
-        }
-  }
+    m_cells[cell_key(centroids.row(e).transpose(), radius_mm)].push_back(static_cast<int>(e));
 }
 
 double RegionalMean::mean(const Eigen::VectorXd& per_element, Eigen::Index e) const
 {
+  const Eigen::Vector3d c = m_centroids.row(e).transpose();
+  const double r2 = m_radius_mm * m_radius_mm;
   double sum = 0.0;
   double volume = 0.0;
-  for (int other : m_regions[static_cast<std::size_t>(e)]) {
-    sum += m_volumes[other] * per_element[other];
-    volume += m_volumes[other];
-  }
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const auto found = m_cells.find(cell_key(c, m_radius_mm, dx, dy, dz));
+        if (found == m_cells.end())
+          continue;
+        for (int other : found->second)
+          if ((m_centroids.row(other).transpose() - c).squaredNorm() <= r2) {
+            sum += m_volumes[other] * per_element[other];
+            volume += m_volumes[other];
+          }
+      }
   return volume > 0.0 ? sum / volume : per_element[e];
 }
 

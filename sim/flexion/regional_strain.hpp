@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace ligsim::sim {
@@ -26,9 +28,11 @@ public:
 
 private:
   double m_radius_mm;
+  Eigen::MatrixX3d m_centroids;
   Eigen::VectorXd m_volumes;
-  /// The elements of each region (each includes the element itself).
-  std::vector<std::vector<int>> m_regions;
+  /// The elements in each grid cell of edge radius_mm (a region lies within 27 cells): found
+  /// anew at each call, since a region list per element would take hundreds of entries each.
+  std::unordered_map<std::int64_t, std::vector<int>> m_cells;
 };
 
 } // namespace ligsim::sim
