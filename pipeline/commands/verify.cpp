@@ -369,6 +369,7 @@ struct FebioOptions {
   /// ligsim's barrier activation distance for the comparison, mm: FEBio's contact keeps no gap,
   /// so ours is made to keep a negligible one (docs/knee.md measures the effect).
   double d_hat_mm = 0.01;
+  sim::FebContactSettings febio_contact;
 };
 
 /// `verify febio`: the flexion by ligsim and by FEBio on the same settings, side by side.
@@ -403,12 +404,13 @@ void run_verify_febio(const FebioOptions& options)
                           {"in_situ_strain", settings.in_situ_strain},
                           {"contact", contact},
                           {"d_hat_mm", settings.contact.barrier.d_hat_mm},
+                          {"febio_penalty", options.febio_contact.penalty},
                           {"axis_point_mm", json_vector3(axis.axis.point_mm)},
                           {"axis_direction", json_vector3(axis.axis.direction)}};
   ensure_directory(options.out);
   StageMeter meter;
-  const sim::CrossCheck check =
-      sim::cross_check_with_febio(model, settings, motion, options.febio, options.out, setup_s);
+  const sim::CrossCheck check = sim::cross_check_with_febio(
+      model, settings, motion, options.febio, options.out, setup_s, options.febio_contact);
   summary.add_stage("cross_check", meter,
                     {{"ours_wall_s", check.ours_wall_s}, {"febio_wall_s", check.run.wall_s}});
   for (const std::string& warning : check.warnings)
@@ -514,6 +516,11 @@ void add_verify_command(CLI::App& app)
       ->add_option("--d-hat", febio_options->d_hat_mm,
                    "contact on: ligsim's barrier activation distance for the comparison, mm "
                    "(FEBio's contact keeps no gap)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  febio
+      ->add_option("--febio-penalty", febio_options->febio_contact.penalty,
+                   "contact on: scale of FEBio's automatic contact penalty")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   febio->callback([febio_options] { run_verify_febio(*febio_options); });

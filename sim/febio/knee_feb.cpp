@@ -58,9 +58,11 @@ double deepest_overlap_mm(const TetMesh& ligament, const FebRigidBody& bone)
 
 FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& settings,
                             const BoundaryConditions& conditions, const SweepSteps& steps,
-                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings)
+                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings,
+                            const FebContactSettings& contact)
 {
   FebProblem problem;
+  problem.contact_settings = contact;
   problem.ligament = model.mesh;
   problem.fiber_directions = model.fiber_directions;
   problem.material = settings.material;

@@ -24,13 +24,14 @@ using namespace ligsim::test;
 namespace {
 
 FebProblem bar_problem(const FlexionSettings& settings,
-                       std::vector<std::string>* warnings = nullptr)
+                       std::vector<std::string>* warnings = nullptr,
+                       const FebContactSettings& contact = {})
 {
   const KneeModel model = bar_knee();
   std::vector<std::string> ignored;
   return knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
                           angle_steps(settings.angles_deg), bar_axis().point_mm,
-                          warnings ? *warnings : ignored);
+                          warnings ? *warnings : ignored, contact);
 }
 
 /// The parsed document (the test fails on malformed XML).
@@ -235,11 +236,13 @@ TEST(FebWriter, ContactKeepsTheMatrixSymmetricForSkyline)
   }
 }
 
-TEST(FebWriter, ContactWithoutOverlapHasNoOffset)
+TEST(FebWriter, ContactWithoutOverlapHasThePenaltyAndNoOffset)
 {
   FlexionSettings settings = bar_settings(0.029);
   settings.contact.enabled = true;
-  const FebProblem problem = bar_problem(settings);
+  FebContactSettings penalty;
+  penalty.penalty = 3.5;
+  const FebProblem problem = bar_problem(settings, nullptr, penalty);
   EXPECT_EQ(problem.bones[feb_femur].contact_start_offset_mm, 0.0);
   EXPECT_EQ(problem.bones[feb_tibia].contact_start_offset_mm, 0.0);
   const auto root = parsed(feb_text(problem));
@@ -248,12 +251,14 @@ TEST(FebWriter, ContactWithoutOverlapHasNoOffset)
   for (int c = 0; c < 2; ++c) {
     vtkXMLDataElement* pair = contact->GetNestedElement(c);
     EXPECT_EQ(text_of(child(pair, "laugon")), "PENALTY");
-    EXPECT_EQ(std::stod(text_of(child(pair, "penalty"))), problem.contact_settings.penalty);
+    EXPECT_EQ(std::stod(text_of(child(pair, "penalty"))), 3.5);
     EXPECT_EQ(text_of(child(pair, "auto_penalty")), "1");
     EXPECT_EQ(child(pair, "offset"), nullptr);
   }
   // The must points and the femur's six degrees of freedom, no ramp.
   EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
+  EXPECT_NE(feb_text(problem).find("automatic penalty scaled by 3.5"), std::string::npos);
+  EXPECT_NE(feb_text(problem).find("does not overlap the bones"), std::string::npos);
 }
 
 TEST(FebWriter, OverlappedBoneStartsShrunkAndGrowsOverTheFirstStep)
