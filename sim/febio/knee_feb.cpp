@@ -155,6 +155,16 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
     notes.push_back(
         "No contact: the stiffness is symmetric, so FEBio's default skyline solver works.");
   }
+  if (problem.contact) {
+    // The symmetrized contact stiffness makes Newton converge linearly; FEBio's relative
+    // displacement criterion then costs about ten more reformations per time step than the
+    // residual and energy criteria, and its automatic stepper answers by shrinking the steps
+    // without end (docs/knee.md, "FEBio cross-check on the HRA knee").
+    problem.solver.displacement_tolerance = 0.0;
+    notes.push_back("Contact on: dtol 0 switches FEBio's displacement criterion off (with the "
+                    "symmetrized stiffness Newton converges linearly, and that criterion kept "
+                    "its time steps shrinking); the residual and energy criteria decide.");
+  }
   const FebSolverSettings& solver = problem.solver;
   notes.push_back(fmt::format(
       "Solver: full Newton (BFGS with max_ups 0: a reformation every iteration), dtol {}, etol "

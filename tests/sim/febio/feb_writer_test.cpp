@@ -108,6 +108,7 @@ TEST(FebWriter, WritesWellFormedXmlWithTheModelsCounts)
   EXPECT_EQ(count(child(root, "Rigid"), "rigid_bc"), 7);
   EXPECT_NE(child(child(root, "Rigid"), "rigid_bc", "type", "rigid_fixed"), nullptr);
   EXPECT_EQ(child(root, "Contact"), nullptr);
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "dtol")), "1e-06");
 }
 
 TEST(FebWriter, NodesTetsAndFibersReadBackExactly)
@@ -259,6 +260,9 @@ TEST(FebWriter, ContactWithoutOverlapHasThePenaltyAndNoOffset)
   EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
   EXPECT_NE(feb_text(problem).find("automatic penalty scaled by 3.5"), std::string::npos);
   EXPECT_NE(feb_text(problem).find("does not overlap the bones"), std::string::npos);
+  // Newton on the symmetrized contact stiffness converges linearly: no displacement criterion.
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "dtol")), "0");
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "rtol")), "1e-08");
 }
 
 TEST(FebWriter, OverlappedBoneStartsShrunkAndGrowsOverTheFirstStep)
