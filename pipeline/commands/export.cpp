@@ -25,6 +25,7 @@ namespace {
 struct ExportOptions {
   FlexionOptions flexion;
   fs::path out;
+  sim::FebContactSettings contact;
 };
 
 void run_export_febio(const ExportOptions& options)
@@ -38,8 +39,8 @@ void run_export_febio(const ExportOptions& options)
       sim::knee_conditions(model, sim::femur_rigid_motion(motion));
   const sim::SweepSteps steps = sim::motion_steps(motion);
   std::vector<std::string> warnings;
-  const sim::FebProblem problem = sim::knee_feb_problem(model, settings, conditions, steps,
-                                                        motion.axis.axis.point_mm, warnings);
+  const sim::FebProblem problem = sim::knee_feb_problem(
+      model, settings, conditions, steps, motion.axis.axis.point_mm, warnings, options.contact);
   for (const std::string& warning : warnings)
     log_info("warning: " + warning);
   if (options.out.has_parent_path())
@@ -64,6 +65,11 @@ void add_export_command(CLI::App& app)
                "in-situ strain, femur motion and contact as `ligsim flexion`");
   add_flexion_options(*febio, options->flexion, false);
   febio->add_option("--out", options->out, "the .feb file to write")->required();
+  febio
+      ->add_option("--febio-penalty", options->contact.penalty,
+                   "contact on: scale of FEBio's automatic contact penalty")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   febio->callback([options] { run_export_febio(*options); });
 }
 

@@ -26,11 +26,17 @@ struct FebRigidBody {
   /// fixed in all six degrees of freedom.
   std::vector<Eigen::Isometry3d> poses;
   bool contact = false; ///< the ligament's free surface slides on it
+  /// Contact: the bone's surface starts shrunk by this much (FEBio's contact offset) and grows
+  /// linearly back to its true surface over the first step, so that a ligament segmented into
+  /// the bone is pushed out gradually, as ligsim's pre-push does (>= 0, mm; 0: no ramp).
+  double contact_start_offset_mm = 0.0;
 };
 
 /// FEBio's sliding-elastic contact (frictionless, penalty).
 struct FebContactSettings {
-  double penalty = 1.0;     ///< scale of FEBio's automatic penalty
+  /// Scale of FEBio's automatic penalty; the penetration it allows falls as it grows (docs/knee.md,
+  /// "FEBio cross-check on the HRA knee", measures 1 and 10 on the HRA MCL).
+  double penalty = 10.0;
   double search_tol = 0.01; ///< FEBio's projection tolerance (fraction of the facet)
 };
 

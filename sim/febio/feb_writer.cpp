@@ -15,6 +15,13 @@ namespace {
 
 using Buffer = fmt::memory_buffer;
 
+/// A load controller's curve (ids from 2 on): its value at time 0 and at the end of each step,
+/// linear in between.
+struct LoadCurve {
+  double at_zero = 0.0;
+  std::vector<double> at_steps;
+};
+
 /// Shortest text that reads back to the same double.
 std::string number(double value)
 {
@@ -56,6 +63,9 @@ void validate(const FebProblem& problem)
     const FebRigidBody& bone = problem.bones[b];
     if (bone.surface.F.rows() == 0)
       fail("FEBio export: the {} has no surface triangles", bone.name);
+    if (!(bone.contact_start_offset_mm >= 0.0) || !std::isfinite(bone.contact_start_offset_mm))
+      fail("FEBio export: the {}'s contact start offset is {} mm (must be >= 0)", bone.name,
+           bone.contact_start_offset_mm);
     if (!bone.poses.empty() && bone.poses.size() != problem.step_labels.size())
       fail("FEBio export: the {} has {} poses for {} steps", bone.name, bone.poses.size(),
            problem.step_labels.size());
@@ -289,7 +299,7 @@ void write_domains_and_data(Buffer& out, const FebProblem& problem)
 /// The bones' attachments, the fixed bones and the moving bones' six degrees of freedom, each
 /// following its own load curve (curve 1 is the must-point curve of the time stepper).
 void write_boundary_and_rigid(Buffer& out, const FebProblem& problem,
-                              std::vector<std::vector<double>>& curves)
+                              std::vector<LoadCurve>& curves)
 {
   const auto it = std::back_inserter(out);
   fmt::format_to(it, "  <Boundary>\n");
@@ -318,9 +328,9 @@ void write_boundary_and_rigid(Buffer& out, const FebProblem& problem,
     for (const Eigen::Isometry3d& pose : bone.poses)
       dofs.push_back(feb_rigid_dofs(pose, bone.center_mm));
     for (int d = 0; d < 6; ++d) {
-      std::vector<double> curve;
+      LoadCurve curve;
       for (const auto& step : dofs)
-        curve.push_back(step(d));
+        curve.at_steps.push_back(step(d));
       curves.push_back(curve);
       const bool turn = d >= 3;
       fmt::format_to(it,
@@ -337,32 +347,46 @@ void write_boundary_and_rigid(Buffer& out, const FebProblem& problem,
   fmt::format_to(it, "  </Rigid>\n");
 }
 
-void write_contact(Buffer& out, const FebProblem& problem)
+/// Frictionless sliding-elastic contact of the free surface with each contact bone; a bone with a
+/// start offset gets FEBio's contact offset -offset at time 0, ramped to 0 at time 1 by its own
+/// load curve.
+void write_contact(Buffer& out, const FebProblem& problem, std::vector<LoadCurve>& curves)
 {
   if (!problem.contact)
     return;
   const auto it = std::back_inserter(out);
+  int ramp = 0; // the ramp's load curve id, once written
   fmt::format_to(it, "  <Contact>\n");
-  for (const FebRigidBody& bone : problem.bones)
-    if (bone.contact)
-      fmt::format_to(it,
-                     "    <contact name=\"ligament_on_{0}\" type=\"sliding-elastic\" "
-                     "surface_pair=\"ligament_on_{0}\">\n"
-                     "      <laugon>PENALTY</laugon>\n"
-                     "      <penalty>{1}</penalty>\n"
-                     "      <auto_penalty>1</auto_penalty>\n"
-                     "      <two_pass>0</two_pass>\n"
-                     "      <search_tol>{2}</search_tol>\n"
-                     "      <symmetric_stiffness>1</symmetric_stiffness>\n"
-                     "      <fric_coeff>0</fric_coeff>\n"
-                     "    </contact>\n",
-                     bone.name, number(problem.contact_settings.penalty),
-                     number(problem.contact_settings.search_tol));
+  for (const FebRigidBody& bone : problem.bones) {
+    if (!bone.contact)
+      continue;
+    fmt::format_to(it,
+                   "    <contact name=\"ligament_on_{0}\" type=\"sliding-elastic\" "
+                   "surface_pair=\"ligament_on_{0}\">\n"
+                   "      <laugon>PENALTY</laugon>\n"
+                   "      <penalty>{1}</penalty>\n"
+                   "      <auto_penalty>1</auto_penalty>\n"
+                   "      <two_pass>0</two_pass>\n"
+                   "      <search_tol>{2}</search_tol>\n"
+                   "      <symmetric_stiffness>1</symmetric_stiffness>\n"
+                   "      <fric_coeff>0</fric_coeff>\n",
+                   bone.name, number(problem.contact_settings.penalty),
+                   number(problem.contact_settings.search_tol));
+    if (bone.contact_start_offset_mm > 0.0) {
+      if (ramp == 0) {
+        LoadCurve down{1.0, std::vector<double>(problem.step_labels.size(), 0.0)};
+        curves.push_back(down);
+        ramp = static_cast<int>(curves.size()) + 1;
+      }
+      fmt::format_to(it, "      <offset lc=\"{}\">{}</offset>\n", ramp,
+                     number(-bone.contact_start_offset_mm));
+    }
+    fmt::format_to(it, "    </contact>\n");
+  }
   fmt::format_to(it, "  </Contact>\n");
 }
 
-void write_load_data(Buffer& out, const FebProblem& problem,
-                     const std::vector<std::vector<double>>& curves)
+void write_load_data(Buffer& out, const FebProblem& problem, const std::vector<LoadCurve>& curves)
 {
   const auto it = std::back_inserter(out);
   const std::size_t steps = problem.step_labels.size();
@@ -378,10 +402,10 @@ void write_load_data(Buffer& out, const FebProblem& problem,
                    "    <load_controller id=\"{}\" type=\"loadcurve\">\n"
                    "      <interpolate>LINEAR</interpolate>\n"
                    "      <extend>CONSTANT</extend>\n"
-                   "      <points>\n        <pt>0,0</pt>\n",
-                   c + 2);
+                   "      <points>\n        <pt>0,{}</pt>\n",
+                   c + 2, number(curves[c].at_zero));
     for (std::size_t k = 0; k < steps; ++k)
-      fmt::format_to(it, "        <pt>{},{}</pt>\n", k + 1, number(curves[c][k]));
+      fmt::format_to(it, "        <pt>{},{}</pt>\n", k + 1, number(curves[c].at_steps[k]));
     fmt::format_to(it, "      </points>\n    </load_controller>\n");
   }
   fmt::format_to(it, "  </LoadData>\n");
@@ -434,9 +458,9 @@ std::string feb_text(const FebProblem& problem)
   write_materials(out, problem);
   write_mesh(out, problem);
   write_domains_and_data(out, problem);
-  std::vector<std::vector<double>> curves;
+  std::vector<LoadCurve> curves;
   write_boundary_and_rigid(out, problem, curves);
-  write_contact(out, problem);
+  write_contact(out, problem, curves);
   write_load_data(out, problem, curves);
   write_output(out, problem);
   fmt::format_to(it, "</febio_spec>\n");

@@ -10,7 +10,8 @@ namespace ligsim::sim {
 
 CrossCheck cross_check_with_febio(const KneeModel& model, const FlexionSettings& settings,
                                   const KneeMotion& motion, const std::filesystem::path& febio,
-                                  const std::filesystem::path& out, double extra_wall_s)
+                                  const std::filesystem::path& out, double extra_wall_s,
+                                  const FebContactSettings& febio_contact)
 {
   if (settings.mode != FlexionMode::quasi_static)
     fail("verify febio: the comparison is quasi-static (FEBio solves equilibria): set mode = "
@@ -28,8 +29,8 @@ CrossCheck cross_check_with_febio(const KneeModel& model, const FlexionSettings&
     fail<SolverError>("verify febio: ligsim's sweep stopped: {}", sweep.failure);
   check.ours = sweep.angles;
 
-  const FebProblem problem = knee_feb_problem(model, settings, conditions, steps,
-                                              motion.axis.axis.point_mm, check.warnings);
+  const FebProblem problem = knee_feb_problem(
+      model, settings, conditions, steps, motion.axis.axis.point_mm, check.warnings, febio_contact);
   check.feb = out / "knee.feb";
   write_feb(check.feb, problem);
   check.run = run_febio(febio, check.feb);

@@ -31,10 +31,12 @@ struct CrossCheck {
 /// to
 /// `<out>/knee.feb`, runs FEBio (`febio`) on it and compares them angle by angle: femur force
 /// magnitude (attachment and contact together), strain energy and mean fiber stretch. `extra_
-/// wall_s` (reading the model, finding the axis) is added to our wall time. Contact grids are
-/// cached in `<model_dir>/contact`. Throws SolverError when either solver stops.
+/// wall_s` (reading the model, finding the axis) is added to our wall time. `febio_contact`:
+/// the file's contact settings. Contact grids are cached in `<model_dir>/contact`. Throws
+/// SolverError when either solver stops.
 CrossCheck cross_check_with_febio(const KneeModel& model, const FlexionSettings& settings,
                                   const KneeMotion& motion, const std::filesystem::path& febio,
-                                  const std::filesystem::path& out, double extra_wall_s = 0.0);
+                                  const std::filesystem::path& out, double extra_wall_s = 0.0,
+                                  const FebContactSettings& febio_contact = {});
 
 } // namespace ligsim::sim

@@ -1,5 +1,7 @@
 #include "sim/febio/knee_feb.hpp"
 
+#include "sim/contact/bone_penetration.hpp"
+#include "sim/contact/contact_surface.hpp"
 #include "sim/flexion/femur_poses.hpp"
 
 #include <fmt/format.h>
@@ -24,13 +26,43 @@ std::string joined(const std::vector<double>& values)
   return text;
 }
 
+std::string joined_text(const std::vector<std::string>& items)
+{
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i == 0 ? "" : (i + 1 == items.size() ? " and " : ", ")) + items[i];
+  return text;
+}
+
+std::string number_text(double value)
+{
+  return fmt::format("{}", value);
+}
+
+/// How deep the ligament's surface nodes that are not bound to `bone` lie inside its triangles
+/// at rest (0 when none is inside), mm.
+double deepest_overlap_mm(const TetMesh& ligament, const FebRigidBody& bone)
+{
+  std::vector<bool> bound(static_cast<std::size_t>(ligament.V.rows()), false);
+  for (int node : bone.attached_nodes)
+    bound[static_cast<std::size_t>(node)] = true;
+  const BonePenetration penetration(bone.surface);
+  double deepest = 0.0;
+  for (int node : boundary_surface(ligament).nodes)
+    if (!bound[static_cast<std::size_t>(node)])
+      deepest = std::max(deepest, penetration.depth_mm(ligament.V.row(node).transpose()));
+  return deepest;
+}
+
 } // namespace
 
 FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& settings,
                             const BoundaryConditions& conditions, const SweepSteps& steps,
-                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings)
+                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings,
+                            const FebContactSettings& contact)
 {
   FebProblem problem;
+  problem.contact_settings = contact;
   problem.ligament = model.mesh;
   problem.fiber_directions = model.fiber_directions;
   problem.material = settings.material;
@@ -52,6 +84,18 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   tibia.attached_nodes = model.tibia_nodes;
   tibia.contact = problem.contact && in_contact(settings.contact, "tibia");
   problem.bones = {femur, tibia};
+  // The same start as ligsim's pre-push (sim/flexion/initial_overlap): each bone the ligament
+  // overlaps as segmented starts shrunk by the deepest overlap plus half of d_hat.
+  std::vector<std::string> overlaps;
+  for (FebRigidBody& bone : problem.bones) {
+    const double deepest = bone.contact ? deepest_overlap_mm(model.mesh, bone) : 0.0;
+    if (deepest > 0.0) {
+      bone.contact_start_offset_mm = deepest + 0.5 * settings.contact.barrier.d_hat_mm;
+      overlaps.push_back(fmt::format("the {} by up to {:.3g} mm (its contact offset starts at "
+                                     "-{:.3g} mm)",
+                                     bone.name, deepest, bone.contact_start_offset_mm));
+    }
+  }
 
   const MaterialParameters& m = settings.material;
   std::vector<std::string>& notes = problem.notes;
@@ -86,16 +130,41 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
     warnings.push_back(warning);
     notes.push_back("WARNING: " + warning + ".");
   }
-  notes.push_back(
-      problem.contact
-          ? "Contact: frictionless sliding-elastic (penalty, automatic penalty) of the ligament's "
-            "free surface on the bones. Its exact stiffness is not symmetric, and FEBio's skyline "
-            "solver (the direct solver of a build without MKL) takes symmetric matrices only; "
-            "the contact is asked for its symmetrized stiffness (symmetric_stiffness 1), which "
-            "leaves the residual, hence the answer, unchanged and only slows Newton's "
-            "convergence. BiCGSTAB on the exact matrix failed on the shipped MCL (no "
-            "preconditioner in this build)."
-          : "No contact: the stiffness is symmetric, so FEBio's default skyline solver works.");
+  if (problem.contact) {
+    notes.push_back(fmt::format(
+        "Contact: frictionless sliding-elastic of the ligament's free surface on the bones, "
+        "penalty method with FEBio's automatic penalty scaled by {} (the default 1 lets the "
+        "ligament into the bone several times deeper; ligsim's barrier keeps a gap instead, "
+        "and both tend to the same contact as the gap and the penetration vanish). Its exact "
+        "stiffness is not symmetric, and FEBio's skyline solver (the direct solver of a build "
+        "without MKL) takes symmetric matrices only; the contact is asked for its symmetrized "
+        "stiffness (symmetric_stiffness 1), which leaves the residual, hence the answer, "
+        "unchanged and only slows Newton's convergence. BiCGSTAB on the exact matrix failed on "
+        "the shipped MCL (no preconditioner in this build).",
+        number_text(problem.contact_settings.penalty)));
+    notes.push_back(
+        overlaps.empty()
+            ? "The ligament does not overlap the bones at rest."
+            : "The ligament overlaps " + joined_text(overlaps) +
+                  " at rest, as segmented. ligsim pushes it out before the knee moves, growing "
+                  "the bones from shrunk back to their surfaces; here the same happens during "
+                  "step 1: the contact offset (negative: the bone shrunk) is ramped linearly to 0 "
+                  "by its own load curve, so that no node starts deep inside a bone, where the "
+                  "penalty would push it out in one jump and invert elements.");
+  } else {
+    notes.push_back(
+        "No contact: the stiffness is symmetric, so FEBio's default skyline solver works.");
+  }
+  if (problem.contact) {
+    // The symmetrized contact stiffness makes Newton converge linearly; FEBio's relative
+    // displacement criterion then costs about ten more reformations per time step than the
+    // residual and energy criteria, and its automatic stepper answers by shrinking the steps
+    // without end (docs/knee.md, "FEBio cross-check on the HRA knee").
+    problem.solver.displacement_tolerance = 0.0;
+    notes.push_back("Contact on: dtol 0 switches FEBio's displacement criterion off (with the "
+                    "symmetrized stiffness Newton converges linearly, and that criterion kept "
+                    "its time steps shrinking); the residual and energy criteria decide.");
+  }
   const FebSolverSettings& solver = problem.solver;
   notes.push_back(fmt::format(
       "Solver: full Newton (BFGS with max_ups 0: a reformation every iteration), dtol {}, etol "

@@ -22,9 +22,10 @@ constexpr std::size_t feb_tibia = 1;
 /// point of the flexion axis), the tibia fixed, contact with the bones settings.contact names
 /// when it is on. FEBio implements only the `weiss` fiber convention: a `paper` material is
 /// written with FEBio's law and the same constants, and a warning among the notes says so
-/// (`warnings` receives it too).
+/// (`warnings` receives it too). `contact`: FEBio's contact settings (penalty scale).
 FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& settings,
                             const BoundaryConditions& conditions, const SweepSteps& steps,
-                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings);
+                            const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings,
+                            const FebContactSettings& contact = {});
 
 } // namespace ligsim::sim

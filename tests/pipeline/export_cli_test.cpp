@@ -89,6 +89,24 @@ TEST(ExportCli, FebioFileHoldsTheModel)
   EXPECT_NE(feb.find("type=\"sliding-elastic\""), std::string::npos); // contact on by default
 }
 
+TEST(ExportCli, FebioPenaltyIsWrittenAndMustBePositive)
+{
+  const fs::path out = fresh_folder("export_penalty") / "band.feb";
+  const std::string command =
+      "export febio --model " + band_model().string() + " " + band_axis() + " --angles 0,45 ";
+  const CliResult result = run_ligsim(command + "--febio-penalty 3.5 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const std::string feb = text(out);
+  EXPECT_NE(feb.find("<penalty>3.5</penalty>"), std::string::npos);
+  EXPECT_EQ(feb.find("<penalty>10</penalty>"), std::string::npos);
+
+  const fs::path bad = fresh_folder("export_penalty_bad") / "band.feb";
+  const CliResult refused = run_ligsim(command + "--febio-penalty 0 --out " + bad.string());
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.stderr_text.find("--febio-penalty"), std::string::npos) << refused.stderr_text;
+  EXPECT_FALSE(fs::exists(bad));
+}
+
 TEST(ExportCli, RejectsAnOutputThatIsNotAFebFile)
 {
   const fs::path out = fresh_folder("export_bad") / "band.txt";

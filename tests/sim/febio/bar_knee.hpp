@@ -3,6 +3,7 @@
 /// along it, the tibia (a sphere below) bound to its bottom face and the femur (a sphere above)
 /// to its top face, flexed about the x axis through the middle of the top face.
 
+#include "sim/contact/contact_surface.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/mesh/sphere_surface.hpp"
 #include "sim/mesh/structured_mesh.hpp"
@@ -48,6 +49,20 @@ inline sim::KneeModel bar_knee()
   }
   model.femur = polydata(sim::sphere_surface({2.0, 2.0, bar_length_mm + 6.0}, 3.0, 1));
   model.tibia = polydata(sim::sphere_surface({2.0, 2.0, -6.0}, 3.0, 1));
+  return model;
+}
+
+/// The bar knee with its tibia (still bound to the bar's bottom face) a 10 mm box beside the bar
+/// that the bar's free side x = 0 overlaps by `overlap_mm` from z = 4 to 16 mm, as a segmented
+/// ligament overlaps its bone: the side's nodes there lie that deep inside it.
+inline sim::KneeModel overlapping_bar_knee(double overlap_mm)
+{
+  sim::KneeModel model = bar_knee();
+  const TetMesh box = sim::structured_box_mesh({1, 1, 1}, {10.0, 10.0, 12.0});
+  TriangleSurface surface;
+  surface.V = box.V.rowwise() + Eigen::RowVector3d(overlap_mm - 10.0, -3.0, 4.0);
+  surface.F = sim::boundary_surface(box).faces;
+  model.tibia = polydata(surface);
   return model;
 }
 

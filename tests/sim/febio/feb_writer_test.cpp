@@ -24,13 +24,14 @@ using namespace ligsim::test;
 namespace {
 
 FebProblem bar_problem(const FlexionSettings& settings,
-                       std::vector<std::string>* warnings = nullptr)
+                       std::vector<std::string>* warnings = nullptr,
+                       const FebContactSettings& contact = {})
 {
   const KneeModel model = bar_knee();
   std::vector<std::string> ignored;
   return knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
                           angle_steps(settings.angles_deg), bar_axis().point_mm,
-                          warnings ? *warnings : ignored);
+                          warnings ? *warnings : ignored, contact);
 }
 
 /// The parsed document (the test fails on malformed XML).
@@ -107,6 +108,7 @@ TEST(FebWriter, WritesWellFormedXmlWithTheModelsCounts)
   EXPECT_EQ(count(child(root, "Rigid"), "rigid_bc"), 7);
   EXPECT_NE(child(child(root, "Rigid"), "rigid_bc", "type", "rigid_fixed"), nullptr);
   EXPECT_EQ(child(root, "Contact"), nullptr);
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "dtol")), "1e-06");
 }
 
 TEST(FebWriter, NodesTetsAndFibersReadBackExactly)
@@ -233,6 +235,79 @@ TEST(FebWriter, ContactKeepsTheMatrixSymmetricForSkyline)
       free = free || !bound[static_cast<std::size_t>(id) - 1];
     EXPECT_TRUE(free) << "face " << f;
   }
+}
+
+TEST(FebWriter, ContactWithoutOverlapHasThePenaltyAndNoOffset)
+{
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  FebContactSettings penalty;
+  penalty.penalty = 3.5;
+  const FebProblem problem = bar_problem(settings, nullptr, penalty);
+  EXPECT_EQ(problem.bones[feb_femur].contact_start_offset_mm, 0.0);
+  EXPECT_EQ(problem.bones[feb_tibia].contact_start_offset_mm, 0.0);
+  const auto root = parsed(feb_text(problem));
+  vtkXMLDataElement* contact = child(root, "Contact");
+  ASSERT_EQ(count(contact, "contact"), 2);
+  for (int c = 0; c < 2; ++c) {
+    vtkXMLDataElement* pair = contact->GetNestedElement(c);
+    EXPECT_EQ(text_of(child(pair, "laugon")), "PENALTY");
+    EXPECT_EQ(std::stod(text_of(child(pair, "penalty"))), 3.5);
+    EXPECT_EQ(text_of(child(pair, "auto_penalty")), "1");
+    EXPECT_EQ(child(pair, "offset"), nullptr);
+  }
+  // The must points and the femur's six degrees of freedom, no ramp.
+  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
+  EXPECT_NE(feb_text(problem).find("automatic penalty scaled by 3.5"), std::string::npos);
+  EXPECT_NE(feb_text(problem).find("does not overlap the bones"), std::string::npos);
+  // Newton on the symmetrized contact stiffness converges linearly: no displacement criterion.
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "dtol")), "0");
+  EXPECT_EQ(text_of(child(child(child(root, "Control"), "solver"), "rtol")), "1e-08");
+}
+
+TEST(FebWriter, OverlappedBoneStartsShrunkAndGrowsOverTheFirstStep)
+{
+  const double overlap_mm = 0.3;
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  settings.contact.barrier.d_hat_mm = 0.1;
+  const KneeModel model = overlapping_bar_knee(overlap_mm);
+  std::vector<std::string> warnings;
+  const FebProblem problem =
+      knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
+                       angle_steps(settings.angles_deg), bar_axis().point_mm, warnings);
+  // The bar's side lies 0.3 mm inside the box: shrunk by that plus half of d_hat, as ligsim's
+  // pre-push starts (to the float precision of the polydata's points); the femur is not
+  // overlapped.
+  EXPECT_NEAR(problem.bones[feb_tibia].contact_start_offset_mm, overlap_mm + 0.05, 1e-6);
+  EXPECT_EQ(problem.bones[feb_femur].contact_start_offset_mm, 0.0);
+
+  const auto root = parsed(feb_text(problem));
+  ASSERT_NE(root, nullptr);
+  vtkXMLDataElement* tibia = child(child(root, "Contact"), "contact", "name", "ligament_on_tibia");
+  vtkXMLDataElement* offset = child(tibia, "offset");
+  ASSERT_NE(offset, nullptr);
+  EXPECT_EQ(std::stod(text_of(offset)), -problem.bones[feb_tibia].contact_start_offset_mm);
+  EXPECT_EQ(child(child(child(root, "Contact"), "contact", "name", "ligament_on_femur"), "offset"),
+            nullptr);
+  // Its load curve: 1 at time 0, 0 from the end of step 1 on.
+  vtkXMLDataElement* curve =
+      child(child(root, "LoadData"), "load_controller", "id", offset->GetAttribute("lc"));
+  ASSERT_NE(curve, nullptr);
+  EXPECT_EQ(text_of(child(curve, "interpolate")), "LINEAR");
+  vtkXMLDataElement* points = child(curve, "points");
+  ASSERT_EQ(count(points, "pt"), 4);
+  EXPECT_EQ(numbers(points->GetNestedElement(0)->GetCharacterData()),
+            (std::vector<double>{0.0, 1.0}));
+  for (int k = 1; k <= 3; ++k)
+    EXPECT_EQ(numbers(points->GetNestedElement(k)->GetCharacterData()),
+              (std::vector<double>{static_cast<double>(k), 0.0}));
+  // The notes say so.
+  EXPECT_NE(feb_text(problem).find("overlaps the tibia by up to 0.3 mm"), std::string::npos);
+
+  FebProblem bad = problem;
+  bad.bones[feb_tibia].contact_start_offset_mm = -1.0;
+  EXPECT_THROW(feb_text(bad), InputError);
 }
 
 TEST(FebWriter, PaperConventionIsWrittenWithAWarning)

@@ -47,12 +47,12 @@ fs::path fresh_folder(const std::string& name)
   return dir;
 }
 
-CrossCheck cross_check(FlexionSettings settings, const std::string& name)
+CrossCheck cross_check(FlexionSettings settings, const std::string& name,
+                       const KneeModel& model = bar_knee())
 {
   Progress::set_quiet(true);
   const fs::path out = fresh_folder(name);
   settings.model_dir = out; // the bones' contact grids are cached there
-  const KneeModel model = bar_knee();
   return cross_check_with_febio(model, settings, resolve_knee_motion(model, settings), febio(),
                                 out);
 }
@@ -116,6 +116,33 @@ TEST(FebioRun, EveryMaterialOptionAndContactRunsToNormalTermination)
         EXPECT_TRUE(result.parsed.normal_termination) << feb;
         EXPECT_NE(result.parsed.find(static_cast<int>(FebLogRecord::ligament_nodes), 3.0), nullptr);
       }
+}
+
+TEST(FebioRun, OverlapIsPushedOutInBothAndTheForcesAgree)
+{
+  REQUIRE_FEBIO();
+  // The bar's side starts 0.3 mm inside the tibia; ligsim pushes it out before the sweep, FEBio
+  // during step 1 (the contact offset ramped to 0). Both must end with the side on the bone, and
+  // the femur force within the 5 % for contact on (the two contact laws differ: FEBio's
+  // penalty at its faces' integration points, ligsim's barrier at the nodes).
+  const double overlap_mm = 0.3;
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  settings.contact.barrier.d_hat_mm = 0.01;
+  const CrossCheck check = cross_check(settings, "overlap", overlapping_bar_knee(overlap_mm));
+  ASSERT_EQ(check.rows.size(), 3u);
+  for (std::size_t k = 0; k < check.rows.size(); ++k) {
+    const ComparisonRow& r = check.rows[k];
+    EXPECT_NEAR(r.ours_femur_force_n, r.febio_femur_force_n, 0.05 * r.febio_femur_force_n)
+        << r.angle_deg << " deg";
+    for (const BoneContact& bone : check.febio_contact[k])
+      EXPECT_LT(bone.penetration_mm, 0.1 * overlap_mm) << "FEBio left the bar in the " << bone.bone;
+    for (const BoneContact& bone : check.ours[k].contact) {
+      EXPECT_EQ(bone.penetration_mm, 0.0) << bone.bone;
+      if (bone.bone == "tibia")
+        EXPECT_GT(bone.force_n.norm(), 1.0) << "the bar does not press on the tibia";
+    }
+  }
 }
 
 TEST(FebioRun, FebiosFailureIsAnErrorWithItsMessage)
