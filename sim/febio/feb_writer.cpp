@@ -394,6 +394,8 @@ void write_load_data(Buffer& out, const FebProblem& problem, const std::vector<L
   fmt::format_to(it, "  <LoadData>\n"
                      "    <load_controller id=\"1\" name=\"must_points\" type=\"loadcurve\">\n"
                      "      <interpolate>STEP</interpolate>\n      <points>\n");
+  // FEBio refuses to initialise a step whose must-point curve has one point: time 0 is one too.
+  fmt::format_to(it, "        <pt>0,1</pt>\n");
   for (std::size_t k = 0; k < steps; ++k)
     fmt::format_to(it, "        <pt>{},1</pt>\n", k + 1);
   fmt::format_to(it, "      </points>\n    </load_controller>\n");

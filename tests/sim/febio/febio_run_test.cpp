@@ -81,6 +81,20 @@ TEST(FebioRun, BarFlexionAgreesWithOurs)
   EXPECT_TRUE(fs::exists(check.feb));
 }
 
+TEST(FebioRun, ASingleAngleAgreesToo)
+{
+  // One step: FEBio once refused its one-point must-point curve ("Step 1 failed to initialize").
+  REQUIRE_FEBIO();
+  FlexionSettings settings = bar_settings(0.029);
+  settings.angles_deg = {30.0};
+  const CrossCheck check = cross_check(settings, "one_angle");
+  ASSERT_EQ(check.rows.size(), 1u);
+  const ComparisonRow& r = check.rows.front();
+  EXPECT_GT(r.febio_femur_force_n, 1.0);
+  EXPECT_NEAR(r.ours_femur_force_n, r.febio_femur_force_n, 1e-6 * r.febio_femur_force_n);
+  EXPECT_NEAR(r.ours_energy_mj, r.febio_energy_mj, 1e-6 * r.febio_energy_mj);
+}
+
 TEST(FebioRun, FebiosOwnEnergyIsOursWithoutInSituStrain)
 {
   REQUIRE_FEBIO();
