@@ -25,14 +25,8 @@ mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 "$SRC/tests/bench/febio_cube.py" par_t020_pen "$OUT/cube.feb"
 
-# run NAME COMMAND...: appends "wall_s peak_kib" to OUT/NAME.times
-run() {
-  local name=$1
-  shift
-  /usr/bin/time -f "%e %M" -o "$OUT/$name.time" "$@" > "$OUT/$name.out" 2>&1 ||
-    { echo "cube_vs_febio.sh: $name failed, see $OUT/$name.out" >&2; exit 1; }
-  cat "$OUT/$name.time" >> "$OUT/$name.times"
-}
+# shellcheck source=tests/bench/timed_runs.sh
+source "$SRC/tests/bench/timed_runs.sh"
 
 rm -f "$OUT"/*.times
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -47,7 +41,6 @@ for round in $(seq "$ROUNDS"); do
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 febio_wall=$(cut -d' ' -f1 "$OUT/febio.times" | median)
 febio_mib=$(cut -d' ' -f2 "$OUT/febio.times" | median | awk '{print $1 / 1024}')
 printf "| program | wall s (median of %d) | peak MiB | FEBio's wall / this |\n" "$ROUNDS"

@@ -18,14 +18,8 @@ CONTACT=${CONTACT:-on}
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 
-# run NAME COMMAND...: appends "wall_s peak_kib" to OUT/NAME.times
-run() {
-  local name=$1
-  shift
-  /usr/bin/time -f "%e %M" -o "$OUT/$name.time" "$@" > "$OUT/$name.out" 2>&1 ||
-    { echo "knee_vs_mcl.sh: $name failed, see $OUT/$name.out" >&2; exit 1; }
-  cat "$OUT/$name.time" >> "$OUT/$name.times"
-}
+# shellcheck source=tests/bench/timed_runs.sh
+source "$SRC/tests/bench/timed_runs.sh"
 fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['frames_per_second'])" "$1"; }
 
 rm -f "$OUT"/*.times "$OUT"/*.fps
@@ -45,7 +39,6 @@ for round in $(seq "$ROUNDS"); do
 done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 
-median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
 printf "| job (contact %s) | knee: wall s | MCL: wall s | knee / MCL | knee: peak MiB | MCL: peak MiB |\n" "$CONTACT"
 printf "| --- | ---: | ---: | ---: | ---: | ---: |\n"
 for job in build static interactive; do
