@@ -35,12 +35,32 @@ inline CliResult run_ligsim(const std::string& arguments)
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
 }
 
-/// An empty folder of its own: the process id keeps suites of several checkouts run at once apart.
+/// This test process's scratch root, removed with everything in it when the process ends (a suite
+/// run leaves about 500 MB of model folders otherwise); LIGSIM_KEEP_TEST_FILES=1 keeps it to look
+/// at. The process id keeps suites of several checkouts run at once apart.
+inline const std::filesystem::path& scratch_root()
+{
+  struct Root {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("ligsim_pipeline_" + std::to_string(::getpid()));
+    ~Root()
+    {
+      if (!std::getenv("LIGSIM_KEEP_TEST_FILES")) {
+        std::error_code ignored;
+        std::filesystem::remove_all(path, ignored);
+      }
+    }
+  };
+  static const Root root;
+  return root.path;
+}
+
+/// An empty folder of its own under this process's scratch root.
 inline std::filesystem::path fresh_folder(const std::string& name)
 {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("ligsim_pipeline_" + std::to_string(::getpid()) + "_" + name);
+  const auto dir = scratch_root() / name;
   std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(scratch_root());
   return dir;
 }
 
