@@ -89,6 +89,16 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
   m_energy_unit = body.material().parameters().mu_mpa * body.rest_volume();
+
+  Eigen::VectorXd lumped = Eigen::VectorXd::Zero(body.dof_count());
+  double mean_size_squared = 0.0;
+  for (Eigen::Index e = 0; e < T.rows(); ++e) {
+    const double volume = body.shape(static_cast<int>(e)).V0;
+    mean_size_squared += std::pow(volume, 2.0 / 3.0) / static_cast<double>(T.rows());
+    for (int i = 0; i < 4; ++i)
+      lumped.segment<3>(3 * T(e, i)).array() += volume / 4.0;
+  }
+  m_shift_unit = free_part(lumped) * (body.material().parameters().mu_mpa / mean_size_squared);
 }
 
 std::vector<double> StaticSolver::step_targets() const
@@ -153,6 +163,8 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
                                     bool allow_saddle, bool& saddle)
 {
   saddle = false;
+  if (m_shifted)
+    return shifted_direction(x, t, rhs, direction, report);
   bool project = m_settings.projection == PsdProjection::always;
   // The extra potential's exact Hessian first: a contact barrier's projected Hessian drops the
   // obstacle's curvature, and Newton converges only linearly on nodes that slide over it.
@@ -207,6 +219,49 @@ bool StaticSolver::newton_direction(const Eigen::VectorXd& x, double t, const Ei
     else
       m_failure = "the Newton direction does not decrease the energy";
     return false;
+  }
+}
+
+bool StaticSolver::shifted_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
+                                     Eigen::VectorXd& direction, StepReport& report)
+{
+  constexpr double first_shift = 1e-2, largest_shift = 1e6;
+  std::vector<NodeBlock> blocks;
+  if (m_extra)
+    m_extra->hessian_blocks(x, t, false, blocks);
+  // D: the body's stiffness scale plus the size of the extra potential's diagonal, per DOF.
+  Eigen::VectorXd unit = m_shift_unit;
+  for (const NodeBlock& block : blocks)
+    for (int k = 0; k < 3; ++k)
+      if (const int f = m_dofs.free_index(3 * block.node + k); f >= 0)
+        unit(f) += std::abs(block.block(k, k));
+  // Unshifted first: near a stable equilibrium this is Newton's own step, converging
+  // quadratically; then from a third of the shift that last worked.
+  double shift = 0.0;
+  for (;;) {
+    const Eigen::VectorXd diagonal =
+        shift > 0.0 ? Eigen::VectorXd(shift * unit) : Eigen::VectorXd();
+    m_linear.prepare(x, false, 1.0, diagonal, blocks);
+    direction = Eigen::VectorXd::Zero(rhs.size());
+    const LinearSolveReport solve = m_linear.solve(rhs, direction);
+    report.linear_iterations += solve.iterations;
+    report.factorizations += solve.factorizations;
+    if (solve.ok && direction.allFinite() && direction.dot(rhs) > 0.0) {
+      if (shift > 0.0) {
+        ++report.shifted_iterations;
+        m_shift = shift;
+      }
+      if (m_settings.verbose && shift > 0.0)
+        log_info(fmt::format("load {:.4g}: Newton step shifted by {:.3g} D", t, shift));
+      return true;
+    }
+    if (shift == 0.0)
+      ++report.indefinite_iterations;
+    shift = shift == 0.0 ? std::max(first_shift, m_shift / 3.0) : 10.0 * shift;
+    if (shift > largest_shift) {
+      m_failure = fmt::format("no shifted Newton step up to {:.0e} D goes downhill", largest_shift);
+      return false;
+    }
   }
 }
 
@@ -466,10 +521,12 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     const double t_end = targets[static_cast<std::size_t>(step) - 1];
     const bool in_place = t_end - t <= 1e-14; // equilibrium at the current load factor
     int consecutive_cutbacks = 0;
-    for (bool first = true; first || t < t_end - 1e-14; first = false) {
+    for (bool first = true; first || t < t_end - 1e-14;) {
+      first = false;
       const double t_next = in_place ? t_end : substeps.next_target(t, t_end);
       const Eigen::VectorXd saved = x;
       const int iterations_before = report.iterations;
+      const int indefinite_before = report.indefinite_iterations;
       m_failure.clear();
       ++report.substeps;
       const bool floor_before = report.converged_at_floor;
@@ -490,6 +547,14 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
                              m_failure));
       x = saved;
       report.converged_at_floor = floor_before;
+      if (!m_shifted && m_extra && m_settings.projection == PsdProjection::automatic &&
+          report.indefinite_iterations > indefinite_before) {
+        // With an extra potential there is no saddle step, and the projected one crawls along
+        // a buckling mode: the same sub-step again, with shifted Newton steps.
+        m_shifted = true;
+        first = true;
+        continue;
+      }
       ++report.cutbacks;
       ++result.cutbacks;
       ++consecutive_cutbacks;
@@ -519,6 +584,8 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     }
     report.converged = true;
     report.load_factor = t_end;
+    m_shifted = false;
+    m_shift = 0.0;
     if (report.indefinite_iterations > 0 && m_tangent.factorize(x)) {
       // Equilibrium reached through an indefinite stiffness: stable or not?
       report.negative_eigenvalues = m_tangent.negative_eigenvalues();

@@ -64,6 +64,9 @@ struct StepReport {
   int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
   int line_search_backtracks = 0;
   int saddle_iterations = 0; ///< iterations by the unprojected (indefinite) Newton step
+  /// iterations by the shifted Newton step (K + sigma D, a retry after a failed sub-step with an
+  /// extra potential and an indefinite stiffness)
+  int shifted_iterations = 0;
   double relative_residual = 0.0;
   /// Converged at the round-off floor (residual stagnating a hair above the tolerance);
   /// `floor` gives the figures.
@@ -139,6 +142,14 @@ private:
   bool newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
                         Eigen::VectorXd& direction, StepReport& report, bool allow_saddle,
                         bool& saddle);
+  /// Newton direction of the unprojected K(x) and exact extra Hessian, shifted by sigma D (D a
+  /// stiffness scale per DOF: m_shift_unit plus the extra Hessian's diagonal) where that is
+  /// indefinite, sigma growing tenfold until the matrix
+  /// is positive definite and the step goes downhill. Unlike the element-wise projection, it
+  /// keeps the negative curvature of a buckling mode, so past a bifurcation the energy descent
+  /// follows the mode instead of crawling. False (m_failure set) when no shift up to 1e6 works.
+  bool shifted_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
+                         Eigen::VectorXd& direction, StepReport& report);
   /// Backtracking along `direction` from `current` at x: on the total energy (Armijo), or for
   /// a saddle step on the residual norm. Sets x_trial, trial, alpha; false when no step is
   /// admissible (m_failure says why for an energy search).
@@ -170,6 +181,11 @@ private:
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;
   double m_converged_t = 0.0; ///< load factor of the last converged state
+  /// mu times the lumped rest volume per free DOF over the mean element size squared, N/mm: the
+  /// unit of the shifted Newton step's diagonal
+  Eigen::VectorXd m_shift_unit;
+  bool m_shifted = false; ///< Newton steps are shifted (until the nominal load step converges)
+  double m_shift = 0.0;   ///< the last sigma that gave a descent direction
 };
 
 } // namespace ligsim::sim

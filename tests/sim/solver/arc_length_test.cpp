@@ -165,6 +165,44 @@ TEST(ArcLength, LoadControlJumpsOverTheTrussLimitPointWithoutSeeingIt)
   EXPECT_NEAR(x(0), 0.0, 1e-9);
 }
 
+TEST(ArcLength, LoadControlInSmallStepsSnapsThroughByShiftedNewtonSteps)
+{
+  // The truss again, in 20 load steps of 0.05: the step from 0.35 to 0.40 crosses the limit
+  // point (0.379), where the near equilibrium vanishes and the bars' Hessian is indefinite (it
+  // has no positive semi-definite form: the Newton step fails and so does every cut-back). The
+  // retry with shifted Newton steps descends the energy to the snapped equilibrium, as a
+  // dynamic run would jump there.
+  ligsim::TetMesh mesh;
+  mesh.V.resize(4, 3);
+  const double h = VonMisesTruss::h;
+  mesh.V << 0, 0, h, 1, 0, h + 1, 0, 1, h + 1, 0, 0, h + 1;
+  mesh.T.resize(1, 4);
+  mesh.T << 0, 1, 2, 3;
+  MaterialParameters soft;
+  soft.mu_mpa = 1e-6;
+  soft.bulk_modulus_mpa = 1e-5;
+  soft.fiber.reset();
+  const HyperelasticBody body(mesh, soft, FiberField());
+  BoundaryConditions conditions;
+  conditions.constraints.push_back({"tet", {1, 2, 3}, {true, true, true}, {}, {}});
+  conditions.constraints.push_back({"plane", {0}, {false, true, false}, {}, {}});
+  conditions.loads.push_back({"apex", {0}, Eigen::Vector3d(0, 0, -VonMisesTruss::P)});
+  const TrussPotential truss;
+  NewtonSettings settings;
+  settings.load_steps = 20;
+  StaticSolver solver(body, conditions, settings);
+  solver.set_extra_potential(&truss);
+  Eigen::VectorXd x = body.rest_positions();
+  const StaticResult result = solver.solve(x);
+  ASSERT_TRUE(result.converged) << result.failure;
+  int shifted = 0;
+  for (const StepReport& step : result.steps)
+    shifted += step.shifted_iterations;
+  EXPECT_GT(shifted, 0);
+  EXPECT_NEAR(x(2), snapped_height(VonMisesTruss::P), 1e-5);
+  EXPECT_NEAR(x(0), 0.0, 1e-9);
+}
+
 TEST(ArcLength, PassesBothTrussLimitPointsAndFindsTheSnappedEquilibrium)
 {
   const VonMisesTruss truss;
