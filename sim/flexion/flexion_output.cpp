@@ -44,6 +44,7 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
                           {"newton_iterations", angle.newton_iterations},
                           {"substeps", angle.substeps},
+                          {"shifted_iterations", angle.shifted_iterations},
                           {"relative_residual", angle.relative_residual},
                           {"min_j", angle.min_j},
                           {"wall_s", angle.wall_s}};

@@ -97,6 +97,7 @@ SweepResult quasi_static_sweep(Measuring& measuring, const FlexionSettings& sett
         angle.strain_energy_mj = step.strain_energy_mj;
         angle.newton_iterations = step.iterations;
         angle.substeps = step.substeps;
+        angle.shifted_iterations = step.shifted_iterations;
         angle.relative_residual = step.relative_residual;
         angle.wall_s = step.wall_s;
         measure(measuring, step.load_factor, state, residual, angle);

@@ -91,6 +91,8 @@ struct AngleResult {
   Eigen::Vector3d tibia_force_n = Eigen::Vector3d::Zero();
   int newton_iterations = 0; ///< quasi-static: Newton iterations; interactive: linear solves
   int substeps = 0;
+  /// Newton steps shifted past a buckling point (sim/solver/static_solver); 0 on a smooth path
+  int shifted_iterations = 0;
   double relative_residual = 0.0;
   double min_j = 1.0;
   double wall_s = 0.0; ///< since the previous angle

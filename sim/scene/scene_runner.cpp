@@ -149,6 +149,7 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                                   {"factorizations", step.factorizations},
                                   {"cg_iterations", step.linear_iterations},
                                   {"indefinite_iterations", step.saddle_iterations},
+                                  {"shifted_iterations", step.shifted_iterations},
                                   {"converged_at_floor", step.converged_at_floor},
                                   {"negative_eigenvalues", step.negative_eigenvalues},
                                   {"wall_s", step.wall_s}};

@@ -392,6 +392,7 @@ bool StaticSolver::line_search(const Eigen::VectorXd& x, const Evaluation& curre
 
 bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
 {
+  constexpr int shifted_iteration_factor = 10;
   if (m_dofs.has_moving_targets() && !move_prescribed(x, t1, report))
     return false;
   const int pushed = m_extra ? m_extra->make_admissible(x, t1) : 0;
@@ -430,7 +431,9 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
       m_converged_t = t1;
       return true;
     }
-    if (iterations == m_settings.max_iterations) {
+    // A shifted sub-step descends from a saddle to the next stable state: away from the saddle
+    // the residual grows while the energy falls, and the way down takes many more iterations.
+    if (iterations == (m_shifted ? shifted_iteration_factor : 1) * m_settings.max_iterations) {
       m_failure = fmt::format("no convergence in {} Newton iterations (relative residual {:.3g})",
                               iterations, report.relative_residual);
       if (report.indefinite_iterations > 0)

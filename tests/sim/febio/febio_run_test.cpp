@@ -153,8 +153,9 @@ TEST(FebioRun, OverlapIsPushedOutInBothAndTheForcesAgree)
       EXPECT_LT(bone.penetration_mm, 0.1 * overlap_mm) << "FEBio left the bar in the " << bone.bone;
     for (const BoneContact& bone : check.ours[k].contact) {
       EXPECT_EQ(bone.penetration_mm, 0.0) << bone.bone;
-      if (bone.bone == "tibia")
+      if (bone.bone == "tibia") {
         EXPECT_GT(bone.force_n.norm(), 1.0) << "the bar does not press on the tibia";
+      }
     }
   }
 }
