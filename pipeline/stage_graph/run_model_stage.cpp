@@ -78,7 +78,8 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
       {"footprint_nodes_inside_bone_added",
        {{"femur", closed.femur_nodes},
         {"tibia", closed.tibia_nodes},
-        {"rule", "a node inside its bone whose tet neighbours are mostly bound to it"}}},
+        {"rule", "a node inside its bone whose tet neighbours are mostly bound to it; then "
+                 "each interior node inside it that shares a tet with the footprint"}}},
       {"fiber_length", 1.0 + config.model.in_situ_strain},
       {"flexion_axis",
        {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},

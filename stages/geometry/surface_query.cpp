@@ -34,8 +34,10 @@ Eigen::Vector3d to_eigen(const Point& p)
   return {p.x(), p.y(), p.z()};
 }
 
-/// A fixed direction unlikely to be parallel to any mesh edge or face.
-const Eigen::Vector3d kGenericDirection = Eigen::Vector3d(0.5773, 0.5774, 0.5774).normalized();
+/// A fixed direction unlikely to be parallel to any mesh edge or face, with three different
+/// components: with two equal ones, the ray from any point with y = z stayed in that plane and
+/// met a box's edges there, which counted twice and turned inside to outside.
+const Eigen::Vector3d kGenericDirection = Eigen::Vector3d(0.5413, 0.5774, 0.6111).normalized();
 
 } // namespace
 

@@ -126,19 +126,50 @@ int close_in_bone(const TetMesh& mesh, const std::vector<std::vector<int>>& neig
   return added;
 }
 
+/// One ring, not repeated: interior nodes inside the bone that share a tet with its footprint.
+/// Contact holds the surface out of the bones, not the interior, so these would stay inside.
+int close_interior_ring(const TetMesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                        const std::vector<bool>& boundary, const SurfaceQuery& bone,
+                        std::vector<bool>& bound, const std::vector<bool>& bound_elsewhere)
+{
+  std::vector<int> ring;
+  for (std::size_t v = 0; v < bound.size(); ++v) {
+    if (bound[v] || bound_elsewhere[v] || boundary[v])
+      continue;
+    const bool touches = std::any_of(neighbours[v].begin(), neighbours[v].end(),
+                                     [&](int w) { return bound[static_cast<std::size_t>(w)]; });
+    if (touches && bone.inside(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()))
+      ring.push_back(static_cast<int>(v));
+  }
+  for (int v : ring)
+    bound[static_cast<std::size_t>(v)] = true;
+  return static_cast<int>(ring.size());
+}
+
+/// Both rules for one bone.
+int close_footprint(const TetMesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                    const std::vector<bool>& boundary, const TriangleSurface& surface,
+                    std::vector<bool>& bound, const std::vector<bool>& bound_elsewhere)
+{
+  const SurfaceQuery bone(surface);
+  const int surrounded = close_in_bone(mesh, neighbours, bone, bound, bound_elsewhere);
+  return surrounded + close_interior_ring(mesh, neighbours, boundary, bone, bound, bound_elsewhere);
+}
+
 } // namespace
 
 FootprintClosing close_footprints_in_bones(Model& model, const TriangleSurface* femur,
                                            const TriangleSurface* tibia)
 {
   const std::vector<std::vector<int>> neighbours = tet_neighbours(model.mesh);
+  const std::vector<bool> boundary = boundary_nodes(model.mesh);
   FootprintClosing closing;
   if (femur != nullptr)
-    closing.femur_nodes = close_in_bone(model.mesh, neighbours, SurfaceQuery(*femur),
-                                        model.femur_nodes, model.tibia_nodes);
+    closing.femur_nodes = close_footprint(model.mesh, neighbours, boundary, *femur,
+                                          model.femur_nodes, model.tibia_nodes);
   if (tibia != nullptr)
-    closing.tibia_nodes = close_in_bone(model.mesh, neighbours, SurfaceQuery(*tibia),
-                                        model.tibia_nodes, model.femur_nodes);
+    closing.tibia_nodes = close_footprint(model.mesh, neighbours, boundary, *tibia,
+                                          model.tibia_nodes, model.femur_nodes);
   return closing;
 }
 

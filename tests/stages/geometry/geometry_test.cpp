@@ -53,6 +53,17 @@ TEST(SurfaceQuery, DistanceInsideAndRayHitsOnABox)
   EXPECT_EQ(query.ray_hits({1.0, 2.0, -1.0}, {1e-9, 2e-9, 1.0}).size(), 2u);
 }
 
+TEST(SurfaceQuery, InsideHoldsOnTheBoxsSymmetryPlanes)
+{
+  // Points with two equal coordinates in a cube whose faces' diagonals lie in the planes
+  // y = z, x = y and x = z: a ray along any of them meets the box's edges.
+  const SurfaceQuery query(synthetic::box({-5, -5, -5}, {20, 10, 10}));
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(0, 2, 2),
+                                   Eigen::Vector3d(3, 3, 0), Eigen::Vector3d(4, 0, 4)})
+    EXPECT_TRUE(query.inside(p)) << p.transpose();
+  EXPECT_FALSE(query.inside({21, 1, 1}));
+}
+
 TEST(SurfaceQuery, FindsSelfIntersections)
 {
   TriangleSurface two = synthetic::box({0, 0, 0}, {2, 2, 2});

@@ -88,11 +88,23 @@ TEST(FootprintClosing, ALigamentLyingInTheBoneAwayFromItsFootprintStaysFree)
 {
   Model model = bar_model(9, 0.0);
   // The whole bar lies in the bone, but only its x = 0 face is bound: every interior node has
-  // more free neighbours than bound ones, and none may join.
+  // more free neighbours than bound ones. Only the interior node next to the face joins (the
+  // one ring of interior nodes in the bone that contact cannot push out), no further one.
   const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {20, 10, 10});
-  const std::vector<bool> before = model.tibia_nodes;
+  std::vector<bool> expected = model.tibia_nodes;
+  expected[static_cast<std::size_t>(node_at(1))] = true;
+  EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 1);
+  EXPECT_EQ(model.tibia_nodes, expected);
+}
+
+TEST(FootprintClosing, TheInteriorRingJoinsOnlyInsideTheBone)
+{
+  Model model = bar_model(9, 0.0);
+  // The bone ends at x = 0.5: the interior node at x = 1 shares tets with the footprint but lies
+  // outside the bone, so contact can hold it out like the surface: it stays free.
+  const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {0.5, 10, 10});
   EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 0);
-  EXPECT_EQ(model.tibia_nodes, before);
+  EXPECT_FALSE(model.tibia_nodes[node_at(1)]);
 }
 
 TEST(FootprintClosing, NodesOfTheOtherBonesFootprintAreNeverTaken)
@@ -100,10 +112,11 @@ TEST(FootprintClosing, NodesOfTheOtherBonesFootprintAreNeverTaken)
   Model model = bar_model(9, 2.0);
   // A femur box over the whole bar: the tibia's footprint nodes and their interior nodes are
   // inside it, but they belong to the tibia (the interior ones have tibial, not femoral,
-  // neighbours); only the femur's own end can close.
+  // neighbours); only the femur's own end closes, by its interior ring (the node at x = 7).
   const TriangleSurface femur = synthetic::box({-5, -5, -5}, {20, 10, 10});
   const FootprintClosing closed = close_footprints_in_bones(model, &femur, nullptr);
-  EXPECT_EQ(closed.femur_nodes, 0);
+  EXPECT_EQ(closed.femur_nodes, 1);
+  EXPECT_TRUE(model.femur_nodes[node_at(7)]);
   for (Eigen::Index v = 0; v < model.mesh.V.rows(); ++v)
     EXPECT_FALSE(model.femur_nodes[v] && model.tibia_nodes[v]) << v;
 }
