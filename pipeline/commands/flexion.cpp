@@ -88,6 +88,7 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
     parameters["static"] = {{"residual_tolerance", settings.newton.residual_tolerance},
                             {"max_iterations", settings.newton.max_iterations},
                             {"max_cutbacks", settings.newton.max_cutbacks},
+                            {"max_substeps", settings.newton.max_substeps},
                             {"linear_solver", to_string(settings.newton.linear_solver)}};
   else
     parameters["interactive"] = {{"angular_speed_deg_s", settings.interactive.angular_speed_deg_s},

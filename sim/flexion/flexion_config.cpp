@@ -106,6 +106,7 @@ void read_static(TomlTable& table, NewtonSettings& newton)
   newton.residual_tolerance = table.number("residual_tolerance", newton.residual_tolerance);
   newton.max_iterations = table.integer("max_iterations", newton.max_iterations);
   newton.max_cutbacks = table.integer("max_cutbacks", newton.max_cutbacks);
+  newton.max_substeps = table.integer("max_substeps", newton.max_substeps);
   newton.verbose = table.boolean("verbose", newton.verbose);
   if (table.has("linear_solver"))
     newton.linear_solver = parse_linear_solver(table.text("linear_solver", ""), table.where());

@@ -265,6 +265,7 @@ void read_solver(TomlTable& table, Scene& scene)
   newton.residual_tolerance = table.number("residual_tolerance", newton.residual_tolerance);
   newton.energy_tolerance = table.number("energy_tolerance", newton.energy_tolerance);
   newton.max_cutbacks = table.integer("max_cutbacks", newton.max_cutbacks);
+  newton.max_substeps = table.integer("max_substeps", newton.max_substeps);
   newton.verbose = table.boolean("verbose", false);
   const LinearSolverKind linear_default =
       scene.kind == SceneKind::dynamic ? LinearSolverKind::pcg : LinearSolverKind::direct;
@@ -277,8 +278,10 @@ void read_solver(TomlTable& table, Scene& scene)
   scene.dynamics.pcg = newton.pcg;
   scene.dynamics.projection = newton.projection;
   table.reject_unknown_keys();
-  if (newton.load_steps < 1 || newton.max_iterations < 1 || newton.max_cutbacks < 0)
-    fail("{}: load_steps and max_iterations must be at least 1, max_cutbacks not negative",
+  if (newton.load_steps < 1 || newton.max_iterations < 1 || newton.max_cutbacks < 0 ||
+      newton.max_substeps < 1)
+    fail("{}: load_steps, max_iterations and max_substeps must be at least 1, max_cutbacks not "
+         "negative",
          table.where());
   if (!(newton.residual_tolerance > 0.0) || !(newton.pcg.tolerance > 0.0) ||
       newton.energy_tolerance < 0.0)

@@ -73,6 +73,8 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
   }
   if (settings.max_iterations < 1)
     fail("solver: max_iterations must be at least 1, got {}", settings.max_iterations);
+  if (settings.max_substeps < 1)
+    fail("solver: max_substeps must be at least 1, got {}", settings.max_substeps);
   if (!(settings.residual_tolerance > 0.0))
     fail("solver: residual_tolerance must be positive, got {}", settings.residual_tolerance);
   if (m_dofs.free_count() == 0)
@@ -523,6 +525,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     report.step = step;
     const double t_end = targets[static_cast<std::size_t>(step) - 1];
     const bool in_place = t_end - t <= 1e-14; // equilibrium at the current load factor
+    const double t_start = t;
     int consecutive_cutbacks = 0;
     for (bool first = true; first || t < t_end - 1e-14;) {
       first = false;
@@ -562,16 +565,24 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       ++result.cutbacks;
       ++consecutive_cutbacks;
       substeps.rejected(t_next - t);
-      if (consecutive_cutbacks > m_settings.max_cutbacks || in_place) {
+      // Sub-steps that each succeed by a sliver between failures never exhaust the cut-backs:
+      // a load step that has taken max_substeps stops too.
+      const bool crawling = report.substeps >= m_settings.max_substeps;
+      if (consecutive_cutbacks > m_settings.max_cutbacks || in_place || crawling) {
         // A step that met an indefinite stiffness stops at a critical point of the path when
         // the tangent at the last converged state is near singular or already indefinite.
         if (report.indefinite_iterations > 0)
           result.critical_mode = stability_mode(x);
         result.critical_load_factor = t;
         result.stop_kind = result.critical_mode ? result.critical_mode->kind() : "failed step";
+        const std::string crawled =
+            crawling ? fmt::format(" and {} sub-steps, the most one load step may take (its load "
+                                   "factor crawled from {:.6g} to {:.6g})",
+                                   report.substeps, t_start, t)
+                     : "";
         result.failure = fmt::format("load step {} (load factor {:.6g}) failed after {} "
-                                     "cut-backs: {}",
-                                     step, t_next, report.cutbacks - 1, m_failure);
+                                     "cut-backs{}: {}",
+                                     step, t_next, report.cutbacks - 1, crawled, m_failure);
         if (result.critical_mode)
           result.failure +=
               fmt::format(". The path meets a {} between load factors {:.6g} "

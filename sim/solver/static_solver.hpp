@@ -47,7 +47,10 @@ struct NewtonSettings {
   PcgSettings pcg;
   PsdProjection projection = PsdProjection::automatic;
   int max_cutbacks = 10; ///< consecutive halvings of a sub-step before giving up
-  bool verbose = false;  ///< one line per Newton iteration on stderr
+  /// sub-steps of one load step before giving up where one fails (a load factor that crawls
+  /// forward in slivers between failures never exhausts max_cutbacks)
+  int max_substeps = 100;
+  bool verbose = false; ///< one line per Newton iteration on stderr
 };
 
 /// What one nominal load step cost and reached.

@@ -111,6 +111,25 @@ TEST(StaticSolver, CutsBackALoadStepThatFails)
   EXPECT_GT(solved.result.steps.back().substeps, 1);
 }
 
+TEST(StaticSolver, ALoadStepThatNeedsMoreSubStepsThanAllowedStops)
+{
+  // The step of CutsBackALoadStepThatFails with at most one sub-step: its first fails, and the
+  // solve stops there, saying why, instead of cutting back.
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
+  NewtonSettings settings;
+  settings.load_steps = 1;
+  settings.max_iterations = 4;
+  settings.max_substeps = 1;
+  const Solved solved = solve(body, conditions, settings);
+  EXPECT_FALSE(solved.result.converged);
+  EXPECT_NE(solved.result.failure.find("1 sub-steps, the most one load step may take"),
+            std::string::npos)
+      << solved.result.failure;
+  EXPECT_TRUE(solved.x.isApprox(body.rest_positions()));
+}
+
 TEST(StaticSolver, ReportsFailureWithTheLastGoodState)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
