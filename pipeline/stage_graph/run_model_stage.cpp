@@ -79,7 +79,8 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
        {{"femur", closed.femur_nodes},
         {"tibia", closed.tibia_nodes},
         {"rule", "a node inside its bone whose tet neighbours are mostly bound to it; then "
-                 "each interior node inside it that shares a tet with the footprint"}}},
+                 "the interior nodes inside it that share a tet with the footprint, ring by ring "
+                 "where no free surface node is beside them"}}},
       {"fiber_length", 1.0 + config.model.in_situ_strain},
       {"flexion_axis",
        {{"point_mm", {axis.point.x(), axis.point.y(), axis.point.z()}},

@@ -126,24 +126,36 @@ int close_in_bone(const TetMesh& mesh, const std::vector<std::vector<int>>& neig
   return added;
 }
 
-/// One ring, not repeated: interior nodes inside the bone that share a tet with its footprint.
-/// Contact holds the surface out of the bones, not the interior, so these would stay inside.
-int close_interior_ring(const TetMesh& mesh, const std::vector<std::vector<int>>& neighbours,
-                        const std::vector<bool>& boundary, const SurfaceQuery& bone,
-                        std::vector<bool>& bound, const std::vector<bool>& bound_elsewhere)
+/// Interior nodes inside the bone that share a tet with its footprint: the first ring as it is,
+/// then ring after ring deeper into the insertion, but only through nodes with no free node of
+/// the ligament's surface beside them (so it never follows a ligament along the bone). Contact
+/// holds the surface out of the bones, not the interior, so these would stay inside.
+int close_interior_rings(const TetMesh& mesh, const std::vector<std::vector<int>>& neighbours,
+                         const std::vector<bool>& boundary, const SurfaceQuery& bone,
+                         std::vector<bool>& bound, const std::vector<bool>& bound_elsewhere)
 {
-  std::vector<int> ring;
-  for (std::size_t v = 0; v < bound.size(); ++v) {
-    if (bound[v] || bound_elsewhere[v] || boundary[v])
-      continue;
-    const bool touches = std::any_of(neighbours[v].begin(), neighbours[v].end(),
-                                     [&](int w) { return bound[static_cast<std::size_t>(w)]; });
-    if (touches && bone.inside(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()))
-      ring.push_back(static_cast<int>(v));
+  int added = 0;
+  for (bool first = true;; first = false) {
+    std::vector<int> ring;
+    for (std::size_t v = 0; v < bound.size(); ++v) {
+      if (bound[v] || bound_elsewhere[v] || boundary[v])
+        continue;
+      bool touches = false, beside_free_surface = false;
+      for (int w : neighbours[v]) {
+        const auto u = static_cast<std::size_t>(w);
+        touches = touches || bound[u];
+        beside_free_surface = beside_free_surface || (boundary[u] && !bound[u]);
+      }
+      if (touches && (first || !beside_free_surface) &&
+          bone.inside(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()))
+        ring.push_back(static_cast<int>(v));
+    }
+    if (ring.empty())
+      return added;
+    for (int v : ring)
+      bound[static_cast<std::size_t>(v)] = true;
+    added += static_cast<int>(ring.size());
   }
-  for (int v : ring)
-    bound[static_cast<std::size_t>(v)] = true;
-  return static_cast<int>(ring.size());
 }
 
 /// Both rules for one bone.
@@ -153,7 +165,8 @@ int close_footprint(const TetMesh& mesh, const std::vector<std::vector<int>>& ne
 {
   const SurfaceQuery bone(surface);
   const int surrounded = close_in_bone(mesh, neighbours, bone, bound, bound_elsewhere);
-  return surrounded + close_interior_ring(mesh, neighbours, boundary, bone, bound, bound_elsewhere);
+  return surrounded +
+         close_interior_rings(mesh, neighbours, boundary, bone, bound, bound_elsewhere);
 }
 
 } // namespace

@@ -45,10 +45,11 @@ struct FootprintClosing {
 /// Held in place by their bound neighbours, those that lie inside the bone stay there however
 /// the ligament settles. They are the insertion: a node inside a bone (ray parity against
 /// `femur`, `tibia`; either may be null) that shares tets with more nodes bound to that bone than
-/// free ones joins its footprint, repeated until none does; then, once, every interior node
-/// inside the bone that shares a tet with the footprint (contact holds the ligament's surface
-/// out of the bones, not its interior). It does not spread along a ligament that merely lies in
-/// the bone beside its footprint, whose nodes have free neighbours.
+/// free ones joins its footprint, repeated until none does; then every interior node inside the
+/// bone that shares a tet with the footprint, and ring by ring deeper ones with no free surface
+/// node beside them (contact holds the ligament's surface out of the bones, not its interior).
+/// It does not spread along a ligament that merely lies in the bone beside its footprint, whose
+/// nodes have free neighbours.
 FootprintClosing close_footprints_in_bones(Model& model, const TriangleSurface* femur,
                                            const TriangleSurface* tibia);
 

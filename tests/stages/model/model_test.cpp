@@ -6,22 +6,22 @@
 namespace ligsim::model {
 namespace {
 
-/// A bar of nx x 3 x 3 nodes, 1 mm apart along x from the origin, each cube cut into the six
-/// tets of its main diagonal: its only interior nodes are (i, 1, 1).
-TetMesh bar(int nx)
+/// A bar of nx x side x side nodes, 1 mm apart from the origin, each cube cut into the six tets
+/// of its main diagonal: with side 3 its only interior nodes are (i, 1, 1).
+TetMesh bar(int nx, int side = 3)
 {
-  const auto node = [](int i, int j, int k) { return (i * 3 + j) * 3 + k; };
+  const auto node = [side](int i, int j, int k) { return (i * side + j) * side + k; };
   TetMesh mesh;
-  mesh.V.resize(nx * 9, 3);
+  mesh.V.resize(nx * side * side, 3);
   for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k)
         mesh.V.row(node(i, j, k)) << i, j, k;
   const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   std::vector<Eigen::RowVector4i> tets;
   for (int i = 0; i + 1 < nx; ++i)
-    for (int j = 0; j < 2; ++j)
-      for (int k = 0; k < 2; ++k)
+    for (int j = 0; j + 1 < side; ++j)
+      for (int k = 0; k + 1 < side; ++k)
         for (const auto& path : paths) {
           int c[3] = {i, j, k};
           Eigen::RowVector4i tet;
@@ -40,10 +40,10 @@ TetMesh bar(int nx)
 
 /// The bar as a model whose tibial footprint is its boundary nodes with x <= `end_mm` and whose
 /// femoral footprint is its boundary nodes at the far end.
-Model bar_model(int nx, double end_mm)
+Model bar_model(int nx, double end_mm, int side = 3)
 {
   Model model;
-  model.mesh = bar(nx);
+  model.mesh = bar(nx, side);
   const std::vector<bool> boundary = boundary_nodes(model.mesh);
   for (Eigen::Index v = 0; v < model.mesh.V.rows(); ++v) {
     const double x = model.mesh.V(v, 0);
@@ -105,6 +105,24 @@ TEST(FootprintClosing, TheInteriorRingJoinsOnlyInsideTheBone)
   const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {0.5, 10, 10});
   EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 0);
   EXPECT_FALSE(model.tibia_nodes[node_at(1)]);
+}
+
+TEST(FootprintClosing, DeeperRingsJoinOnlyAwayFromTheFreeSurface)
+{
+  // A 5 x 5 bar bound at its x = 0 face, in a bone up to x = 2.5: the first ring (the nine
+  // interior nodes at x = 1) joins; of the interior nodes at x = 2 only the middle one, whose
+  // neighbours are all interior, joins; the others touch the free surface at x = 2.
+  Model model = bar_model(9, 0.0, 5);
+  const auto node = [](int i, int j, int k) { return (i * 5 + j) * 5 + k; };
+  const TriangleSurface tibia = synthetic::box({-5, -5, -5}, {2.5, 10, 10});
+  EXPECT_EQ(close_footprints_in_bones(model, nullptr, &tibia).tibia_nodes, 10);
+  for (int j = 1; j <= 3; ++j)
+    for (int k = 1; k <= 3; ++k)
+      EXPECT_TRUE(model.tibia_nodes[node(1, j, k)]) << j << " " << k;
+  EXPECT_TRUE(model.tibia_nodes[node(2, 2, 2)]);
+  EXPECT_FALSE(model.tibia_nodes[node(2, 1, 1)]);
+  EXPECT_FALSE(model.tibia_nodes[node(2, 1, 2)]);
+  EXPECT_FALSE(model.tibia_nodes[node(3, 2, 2)]); // outside the bone
 }
 
 TEST(FootprintClosing, NodesOfTheOtherBonesFootprintAreNeverTaken)
