@@ -122,85 +122,77 @@ double snapped_height(double force)
   return 0.5 * (lo + hi);
 }
 
+/// The truss in the load-controlled StaticSolver in `load_steps` equal steps: its apex is node 0
+/// of one tet whose other nodes are fixed (a ground substance 1e-6 of the truss's stiffness), the
+/// bars an extra potential on that node, the apex held in the truss's plane.
+struct TrussOnATet {
+  StaticResult result;
+  Eigen::VectorXd x;
+};
+
+TrussOnATet solve_truss_on_a_tet(int load_steps)
+{
+  ligsim::TetMesh mesh;
+  mesh.V.resize(4, 3);
+  const double h = VonMisesTruss::h;
+  mesh.V << 0, 0, h, 1, 0, h + 1, 0, 1, h + 1, 0, 0, h + 1;
+  mesh.T.resize(1, 4);
+  mesh.T << 0, 1, 2, 3;
+  MaterialParameters soft;
+  soft.mu_mpa = 1e-6;
+  soft.bulk_modulus_mpa = 1e-5;
+  soft.fiber.reset();
+  const HyperelasticBody body(mesh, soft, FiberField());
+  BoundaryConditions conditions;
+  conditions.constraints.push_back({"tet", {1, 2, 3}, {true, true, true}, {}, {}});
+  conditions.constraints.push_back({"plane", {0}, {false, true, false}, {}, {}});
+  conditions.loads.push_back({"apex", {0}, Eigen::Vector3d(0, 0, -VonMisesTruss::P)});
+  const TrussPotential truss;
+  NewtonSettings settings;
+  settings.load_steps = load_steps;
+  StaticSolver solver(body, conditions, settings);
+  solver.set_extra_potential(&truss);
+  TrussOnATet solved;
+  solved.x = body.rest_positions();
+  solved.result = solver.solve(solved.x);
+  return solved;
+}
+
 } // namespace
 
 TEST(ArcLength, LoadControlJumpsOverTheTrussLimitPointWithoutSeeingIt)
 {
-  // The same truss in the load-controlled StaticSolver, in 4 load steps of 0.25 (the limit is
-  // at 0.379): the Newton step of the second one lands beyond the unstable branch, on the
-  // snapped one, and every matrix on the way is positive definite, so the solver converges
-  // there without ever meeting the limit point (a snap-through, which a dynamic run would show
-  // as a jump). Only the continuation finds the limit load. its apex is node 0 of one tet whose
-  // other nodes are fixed (a ground substance 1e-6 of the truss's stiffness), the bars an extra
-  // potential on that node, the apex held in the truss's plane.
-  ligsim::TetMesh mesh;
-  mesh.V.resize(4, 3);
-  const double h = VonMisesTruss::h;
-  mesh.V << 0, 0, h, 1, 0, h + 1, 0, 1, h + 1, 0, 0, h + 1;
-  mesh.T.resize(1, 4);
-  mesh.T << 0, 1, 2, 3;
-  MaterialParameters soft;
-  soft.mu_mpa = 1e-6;
-  soft.bulk_modulus_mpa = 1e-5;
-  soft.fiber.reset();
-  const HyperelasticBody body(mesh, soft, FiberField());
-  BoundaryConditions conditions;
-  conditions.constraints.push_back({"tet", {1, 2, 3}, {true, true, true}, {}, {}});
-  conditions.constraints.push_back({"plane", {0}, {false, true, false}, {}, {}});
-  conditions.loads.push_back({"apex", {0}, Eigen::Vector3d(0, 0, -VonMisesTruss::P)});
-  const TrussPotential truss;
-  NewtonSettings settings;
-  settings.load_steps = 4;
-  StaticSolver solver(body, conditions, settings);
-  solver.set_extra_potential(&truss);
-  Eigen::VectorXd x = body.rest_positions();
-  const StaticResult result = solver.solve(x);
-  ASSERT_TRUE(result.converged) << result.failure;
+  // The truss in 4 load steps of 0.25 (the limit is at 0.379): the Newton step of the second one
+  // lands beyond the unstable branch, on the snapped one, and every matrix on the way is
+  // positive definite, so the solver converges there without ever meeting the limit point (a
+  // snap-through, which a dynamic run would show as a jump). Only the continuation finds the
+  // limit load.
+  const TrussOnATet solved = solve_truss_on_a_tet(4);
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   int indefinite = 0;
-  for (const StepReport& step : result.steps)
+  for (const StepReport& step : solved.result.steps)
     indefinite += step.indefinite_iterations;
   EXPECT_EQ(indefinite, 0);
   // The snapped equilibrium (the tet's ground substance moves it by ~1e-7 mm).
-  EXPECT_NEAR(x(2), snapped_height(VonMisesTruss::P), 1e-5);
-  EXPECT_NEAR(x(0), 0.0, 1e-9);
+  EXPECT_NEAR(solved.x(2), snapped_height(VonMisesTruss::P), 1e-5);
+  EXPECT_NEAR(solved.x(0), 0.0, 1e-9);
 }
 
 TEST(ArcLength, LoadControlInSmallStepsSnapsThroughByShiftedNewtonSteps)
 {
-  // The truss again, in 20 load steps of 0.05: the step from 0.35 to 0.40 crosses the limit
-  // point (0.379), where the near equilibrium vanishes and the bars' Hessian is indefinite (it
-  // has no positive semi-definite form: the Newton step fails and so does every cut-back). The
-  // retry with shifted Newton steps descends the energy to the snapped equilibrium, as a
-  // dynamic run would jump there.
-  ligsim::TetMesh mesh;
-  mesh.V.resize(4, 3);
-  const double h = VonMisesTruss::h;
-  mesh.V << 0, 0, h, 1, 0, h + 1, 0, 1, h + 1, 0, 0, h + 1;
-  mesh.T.resize(1, 4);
-  mesh.T << 0, 1, 2, 3;
-  MaterialParameters soft;
-  soft.mu_mpa = 1e-6;
-  soft.bulk_modulus_mpa = 1e-5;
-  soft.fiber.reset();
-  const HyperelasticBody body(mesh, soft, FiberField());
-  BoundaryConditions conditions;
-  conditions.constraints.push_back({"tet", {1, 2, 3}, {true, true, true}, {}, {}});
-  conditions.constraints.push_back({"plane", {0}, {false, true, false}, {}, {}});
-  conditions.loads.push_back({"apex", {0}, Eigen::Vector3d(0, 0, -VonMisesTruss::P)});
-  const TrussPotential truss;
-  NewtonSettings settings;
-  settings.load_steps = 20;
-  StaticSolver solver(body, conditions, settings);
-  solver.set_extra_potential(&truss);
-  Eigen::VectorXd x = body.rest_positions();
-  const StaticResult result = solver.solve(x);
-  ASSERT_TRUE(result.converged) << result.failure;
+  // The truss in 20 load steps of 0.05: the step from 0.35 to 0.40 crosses the limit point,
+  // where the near equilibrium vanishes and the bars' Hessian is indefinite (it has no positive
+  // semi-definite form: the Newton step fails and so does every cut-back). The retry with
+  // shifted Newton steps descends the energy to the snapped equilibrium, as a dynamic run would
+  // jump there.
+  const TrussOnATet solved = solve_truss_on_a_tet(20);
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   int shifted = 0;
-  for (const StepReport& step : result.steps)
+  for (const StepReport& step : solved.result.steps)
     shifted += step.shifted_iterations;
   EXPECT_GT(shifted, 0);
-  EXPECT_NEAR(x(2), snapped_height(VonMisesTruss::P), 1e-5);
-  EXPECT_NEAR(x(0), 0.0, 1e-9);
+  EXPECT_NEAR(solved.x(2), snapped_height(VonMisesTruss::P), 1e-5);
+  EXPECT_NEAR(solved.x(0), 0.0, 1e-9);
 }
 
 TEST(ArcLength, PassesBothTrussLimitPointsAndFindsTheSnappedEquilibrium)

@@ -23,6 +23,7 @@ struct Solved {
   StaticResult result;
   Eigen::VectorXd x;
   Eigen::VectorXd residual;
+  Eigen::VectorXd rest; ///< where x started
 };
 
 Solved solve(const HyperelasticBody& body, const BoundaryConditions& conditions,
@@ -30,10 +31,25 @@ Solved solve(const HyperelasticBody& body, const BoundaryConditions& conditions,
 {
   StaticSolver solver(body, conditions, settings);
   Solved solved;
-  solved.x = body.rest_positions();
+  solved.rest = body.rest_positions();
+  solved.x = solved.rest;
   solved.result = solver.solve(solved.x, [&](const StepReport&, const Eigen::VectorXd&,
                                              const Eigen::VectorXd& r) { solved.residual = r; });
   return solved;
+}
+
+/// A cube pulled along its fibers in one load step with 4 Newton iterations allowed, too few for
+/// the full load at once.
+Solved solve_with_too_few_iterations(int max_substeps)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
+  NewtonSettings settings;
+  settings.load_steps = 1;
+  settings.max_iterations = 4;
+  settings.max_substeps = max_substeps;
+  return solve(body, conditions, settings);
 }
 
 } // namespace
@@ -99,13 +115,7 @@ TEST(StaticSolver, RigidMotionOfTheWholeBoundaryCostsNoEnergy)
 
 TEST(StaticSolver, CutsBackALoadStepThatFails)
 {
-  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
-  const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
-  NewtonSettings settings;
-  settings.load_steps = 1;
-  settings.max_iterations = 4; // too few for the full load at once
-  const Solved solved = solve(body, conditions, settings);
+  const Solved solved = solve_with_too_few_iterations(NewtonSettings{}.max_substeps);
   ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   EXPECT_GT(solved.result.cutbacks, 0);
   EXPECT_GT(solved.result.steps.back().substeps, 1);
@@ -115,19 +125,12 @@ TEST(StaticSolver, ALoadStepThatNeedsMoreSubStepsThanAllowedStops)
 {
   // The step of CutsBackALoadStepThatFails with at most one sub-step: its first fails, and the
   // solve stops there, saying why, instead of cutting back.
-  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
-  const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
-  NewtonSettings settings;
-  settings.load_steps = 1;
-  settings.max_iterations = 4;
-  settings.max_substeps = 1;
-  const Solved solved = solve(body, conditions, settings);
+  const Solved solved = solve_with_too_few_iterations(1);
   EXPECT_FALSE(solved.result.converged);
   EXPECT_NE(solved.result.failure.find("1 sub-steps, the most one load step may take"),
             std::string::npos)
       << solved.result.failure;
-  EXPECT_TRUE(solved.x.isApprox(body.rest_positions()));
+  EXPECT_TRUE(solved.x.isApprox(solved.rest));
 }
 
 TEST(StaticSolver, ReportsFailureWithTheLastGoodState)
