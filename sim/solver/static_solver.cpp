@@ -506,6 +506,8 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
   }
   const std::vector<double> targets = step_targets();
   const int steps = static_cast<int>(targets.size());
+  m_shifted = false; // a solve that failed before may have left it on
+  m_shift = 0.0;
   auto add_totals = [&](const StepReport& report) {
     result.newton_iterations += report.iterations;
     result.projected_elements += report.projected_elements;

@@ -158,6 +158,24 @@ TrussOnATet solve_truss_on_a_tet(int load_steps)
   return solved;
 }
 
+/// Converged on the snapped branch at full load, the apex on the axis (the tet's ground substance
+/// moves it by ~1e-7 mm).
+void expect_snapped(const TrussOnATet& solved)
+{
+  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
+  EXPECT_NEAR(solved.x(2), snapped_height(VonMisesTruss::P), 1e-5);
+  EXPECT_NEAR(solved.x(0), 0.0, 1e-9);
+}
+
+/// A per-step count summed over the solve's load steps.
+int total(const StaticResult& result, int StepReport::*count)
+{
+  int sum = 0;
+  for (const StepReport& step : result.steps)
+    sum += step.*count;
+  return sum;
+}
+
 } // namespace
 
 TEST(ArcLength, LoadControlJumpsOverTheTrussLimitPointWithoutSeeingIt)
@@ -168,14 +186,8 @@ TEST(ArcLength, LoadControlJumpsOverTheTrussLimitPointWithoutSeeingIt)
   // snap-through, which a dynamic run would show as a jump). Only the continuation finds the
   // limit load.
   const TrussOnATet solved = solve_truss_on_a_tet(4);
-  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
-  int indefinite = 0;
-  for (const StepReport& step : solved.result.steps)
-    indefinite += step.indefinite_iterations;
-  EXPECT_EQ(indefinite, 0);
-  // The snapped equilibrium (the tet's ground substance moves it by ~1e-7 mm).
-  EXPECT_NEAR(solved.x(2), snapped_height(VonMisesTruss::P), 1e-5);
-  EXPECT_NEAR(solved.x(0), 0.0, 1e-9);
+  expect_snapped(solved);
+  EXPECT_EQ(total(solved.result, &StepReport::indefinite_iterations), 0);
 }
 
 TEST(ArcLength, LoadControlInSmallStepsSnapsThroughByShiftedNewtonSteps)
@@ -186,13 +198,8 @@ TEST(ArcLength, LoadControlInSmallStepsSnapsThroughByShiftedNewtonSteps)
   // shifted Newton steps descends the energy to the snapped equilibrium, as a dynamic run would
   // jump there.
   const TrussOnATet solved = solve_truss_on_a_tet(20);
-  ASSERT_TRUE(solved.result.converged) << solved.result.failure;
-  int shifted = 0;
-  for (const StepReport& step : solved.result.steps)
-    shifted += step.shifted_iterations;
-  EXPECT_GT(shifted, 0);
-  EXPECT_NEAR(solved.x(2), snapped_height(VonMisesTruss::P), 1e-5);
-  EXPECT_NEAR(solved.x(0), 0.0, 1e-9);
+  expect_snapped(solved);
+  EXPECT_GT(total(solved.result, &StepReport::shifted_iterations), 0);
 }
 
 TEST(ArcLength, PassesBothTrussLimitPointsAndFindsTheSnappedEquilibrium)

@@ -38,17 +38,16 @@ Solved solve(const HyperelasticBody& body, const BoundaryConditions& conditions,
   return solved;
 }
 
-/// A cube pulled along its fibers in one load step with 4 Newton iterations allowed, too few for
-/// the full load at once.
-Solved solve_with_too_few_iterations(int max_substeps)
+/// A cube of `cells`^3 cells pulled along its fibers by `per_node_n` on each top node in one load
+/// step with `max_iterations` Newton iterations.
+Solved pull_in_one_step(int cells, double per_node_n, int max_iterations,
+                        NewtonSettings settings = {})
 {
-  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const ligsim::TetMesh mesh = structured_cube_mesh(cells, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 6.0});
-  NewtonSettings settings;
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, per_node_n});
   settings.load_steps = 1;
-  settings.max_iterations = 4;
-  settings.max_substeps = max_substeps;
+  settings.max_iterations = max_iterations;
   return solve(body, conditions, settings);
 }
 
@@ -115,7 +114,7 @@ TEST(StaticSolver, RigidMotionOfTheWholeBoundaryCostsNoEnergy)
 
 TEST(StaticSolver, CutsBackALoadStepThatFails)
 {
-  const Solved solved = solve_with_too_few_iterations(NewtonSettings{}.max_substeps);
+  const Solved solved = pull_in_one_step(3, 6.0, 4); // too few iterations for the load at once
   ASSERT_TRUE(solved.result.converged) << solved.result.failure;
   EXPECT_GT(solved.result.cutbacks, 0);
   EXPECT_GT(solved.result.steps.back().substeps, 1);
@@ -125,7 +124,9 @@ TEST(StaticSolver, ALoadStepThatNeedsMoreSubStepsThanAllowedStops)
 {
   // The step of CutsBackALoadStepThatFails with at most one sub-step: its first fails, and the
   // solve stops there, saying why, instead of cutting back.
-  const Solved solved = solve_with_too_few_iterations(1);
+  NewtonSettings one_substep;
+  one_substep.max_substeps = 1;
+  const Solved solved = pull_in_one_step(3, 6.0, 4, one_substep);
   EXPECT_FALSE(solved.result.converged);
   EXPECT_NE(solved.result.failure.find("1 sub-steps, the most one load step may take"),
             std::string::npos)
@@ -135,17 +136,12 @@ TEST(StaticSolver, ALoadStepThatNeedsMoreSubStepsThanAllowedStops)
 
 TEST(StaticSolver, ReportsFailureWithTheLastGoodState)
 {
-  const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
-  const HyperelasticBody body(mesh, mcl_material(), along_z());
-  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 20.0});
-  NewtonSettings settings;
-  settings.load_steps = 1;
-  settings.max_iterations = 1;
-  settings.max_cutbacks = 1;
-  const Solved solved = solve(body, conditions, settings);
+  NewtonSettings one_cutback;
+  one_cutback.max_cutbacks = 1;
+  const Solved solved = pull_in_one_step(2, 20.0, 1, one_cutback);
   EXPECT_FALSE(solved.result.converged);
   EXPECT_NE(solved.result.failure.find("cut-backs"), std::string::npos) << solved.result.failure;
-  EXPECT_TRUE(solved.x.isApprox(body.rest_positions()));
+  EXPECT_TRUE(solved.x.isApprox(solved.rest));
 }
 
 TEST(StaticSolver, NodesWithoutElementsAreHeldFixed)
