@@ -53,6 +53,7 @@ ResolvedAxis axis_of_condyles(const KneeModel& model, const AxisSettings& settin
   resolved.method = "cylinder fitted to the posterior femoral condyles";
   resolved.figures = {{"radius_mm", fit.radius_mm},
                       {"rms_residual_mm", fit.rms_residual_mm},
+                      {"span_mm", fit.span_mm},
                       {"points_used", fit.points_used},
                       {"points_considered", fit.points_considered},
                       {"proximal", json_vector3(proximal)},

@@ -375,6 +375,7 @@ CondyleAxisFit fit_condyle_axis(const TriangleSurface& femur, const Eigen::Vecto
   }
   fit.rms_residual_mm = std::sqrt(sum_squares / fit.points_used);
   fit.radius_mm = cylinder.radius;
+  fit.span_mm = along_max - along_min;
   fit.axis.direction = cylinder.axis;
   fit.axis.point_mm = centroid + cylinder.point + 0.5 * (along_min + along_max) * cylinder.axis;
   return fit;

@@ -31,6 +31,7 @@ struct CondyleAxisFit {
   FlexionAxis axis;
   double radius_mm = 0;           ///< fitted cylinder radius
   double rms_residual_mm = 0;     ///< RMS distance of the used points to the cylinder
+  double span_mm = 0;             ///< extent of the used points along the axis
   int points_used = 0;            ///< vertices that entered the final fit
   int points_considered = 0;      ///< posterior-facing candidates
   int iterations = 0;             ///< Levenberg-Marquardt iterations, all trimming rounds together
