@@ -7,6 +7,7 @@
 #include "stages/io/surface_reader.hpp"
 #include "stages/labelmap/label_names.hpp"
 #include "stages/labelmap/rasterize.hpp"
+#include "stages/repair/repair.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -29,10 +30,11 @@ struct LabelmapOptions {
   std::string out;
 };
 
-/// A part's surface, label and name (empty if none).
+/// A part's surface, label and name (empty if none), and what closing it took.
 struct Part {
   labelmap::LabeledSurface labeled;
   std::string name;
+  repair::Report repairs;
 };
 
 Part read_part(const std::string& text)
@@ -67,8 +69,14 @@ Part read_part(const std::string& text)
   }
   if (part.labeled.label <= 0)
     fail("--part '{}': labels are positive (0 is the background)", text);
-  part.labeled.surface = io::read_surface(file);
-  io::orient_outward(part.labeled.surface);
+  // Voxels are inside by ray parity, which an open surface breaks (a column through a hole
+  // leaks): each part is made one closed shell first, as the build makes a bone.
+  repair::Result closed =
+      repair::repair_bone(io::read_surface(file), fmt::format("--part '{}'", file));
+  for (const std::string& line : repair::describe(closed.report))
+    log_info(fmt::format("--part {}: {}", file, line));
+  part.labeled.surface = std::move(closed.surface);
+  part.repairs = std::move(closed.report);
   return part;
 }
 
@@ -86,10 +94,12 @@ void run_labelmap(const LabelmapOptions& o)
     fail("--spacing needs three values (x, y, z in mm)");
   std::vector<labelmap::LabeledSurface> parts;
   std::vector<labelmap::LabelName> names;
+  nlohmann::json repairs = nlohmann::json::object();
   for (const std::string& text : o.parts) {
     Part part = read_part(text);
     if (!part.name.empty())
       names.push_back({part.labeled.label, part.name, 0, "--part"});
+    repairs[std::to_string(part.labeled.label)] = repair::to_json(part.repairs);
     parts.push_back(std::move(part.labeled));
   }
   // The image covers the first part (or --around) with a margin: the region a scan would show.
@@ -127,7 +137,8 @@ void run_labelmap(const LabelmapOptions& o)
   summary.add_stage("labelmap", meter,
                     {{"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
                      {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
-                     {"voxels_per_label", counts}});
+                     {"voxels_per_label", counts},
+                     {"repairs_per_label", repairs}});
   summary.write(out.parent_path().empty() ? fs::path(".") : out.parent_path());
   log_info(fmt::format("wrote {} ({} x {} x {} voxels)", out.string(), image.dims.x(),
                        image.dims.y(), image.dims.z()));
