@@ -107,8 +107,9 @@ TEST(LabelmapCli, AnOpenPartIsClosedBeforeItIsVoxelized)
     const fs::path cube = dir / (open ? "open.obj" : "closed.obj");
     std::ofstream(cube) << cube_obj(open);
     const fs::path map = dir / (open ? "open" : "closed") / "map.nrrd";
-    const CliResult result = run_ligsim("labelmap --part " + cube.string() +
-                                        ":1 --spacing 0.7 0.9 1.1 --margin 3 --out " + map.string());
+    const CliResult result =
+        run_ligsim("labelmap --part " + cube.string() +
+                   ":1 --spacing 0.7 0.9 1.1 --margin 3 --out " + map.string());
     ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
     const nlohmann::json labelmap = read_summary(map.parent_path())["stages"]["labelmap"];
     voxels[open] = labelmap["voxels_per_label"]["1"].get<long>();
