@@ -75,6 +75,11 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
       {"boundary_nodes", built.boundary_nodes},
       {"femur_nodes", count(built.femur_nodes)},
       {"tibia_nodes", count(built.tibia_nodes)},
+      {"footprint_nodes_unbound",
+       {{"femur", built.femur_nodes_unbound},
+        {"tibia", built.tibia_nodes_unbound},
+        {"rule", "a node the attachment rule binds that is no corner of a boundary face bound "
+                 "to the same bone (a point constraint) stays free"}}},
       {"footprint_nodes_inside_bone_added",
        {{"femur", closed.femur_nodes},
         {"tibia", closed.tibia_nodes},

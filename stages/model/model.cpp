@@ -12,7 +12,7 @@
 
 namespace ligsim::model {
 
-std::vector<bool> boundary_nodes(const TetMesh& mesh)
+std::vector<std::array<int, 3>> boundary_faces(const TetMesh& mesh)
 {
   static const int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   std::map<std::array<int, 3>, int> count;
@@ -22,12 +22,42 @@ std::vector<bool> boundary_nodes(const TetMesh& mesh)
       std::sort(key.begin(), key.end());
       ++count[key];
     }
-  std::vector<bool> on_boundary(static_cast<std::size_t>(mesh.V.rows()), false);
+  std::vector<std::array<int, 3>> boundary;
   for (const auto& [face, n] : count)
     if (n == 1)
-      for (int v : face)
-        on_boundary[static_cast<std::size_t>(v)] = true;
+      boundary.push_back(face);
+  return boundary;
+}
+
+std::vector<bool> boundary_nodes(const TetMesh& mesh)
+{
+  std::vector<bool> on_boundary(static_cast<std::size_t>(mesh.V.rows()), false);
+  for (const auto& face : boundary_faces(mesh))
+    for (int v : face)
+      on_boundary[static_cast<std::size_t>(v)] = true;
   return on_boundary;
+}
+
+int free_unsupported_nodes(const std::vector<std::array<int, 3>>& faces, std::vector<bool>& bound)
+{
+  int freed = 0;
+  for (;;) {
+    std::vector<bool> supported(bound.size(), false);
+    for (const auto& face : faces)
+      if (bound[static_cast<std::size_t>(face[0])] && bound[static_cast<std::size_t>(face[1])] &&
+          bound[static_cast<std::size_t>(face[2])])
+        for (int v : face)
+          supported[static_cast<std::size_t>(v)] = true;
+    int round = 0;
+    for (std::size_t v = 0; v < bound.size(); ++v)
+      if (bound[v] && !supported[v]) {
+        bound[v] = false;
+        ++round;
+      }
+    if (round == 0)
+      return freed;
+    freed += round;
+  }
 }
 
 Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
@@ -45,6 +75,7 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
   Model model;
   model.mesh = mesh;
   model.fibers = (1.0 + parameters.in_situ_strain) * directions;
+  const std::vector<std::array<int, 3>> faces = boundary_faces(mesh);
   const std::vector<bool> boundary = boundary_nodes(mesh);
   const std::size_t n = boundary.size();
   model.femur_nodes.assign(n, false);
@@ -70,6 +101,8 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
     model.femur_nodes[v] = femur >= 2;
     model.tibia_nodes[v] = tibia >= 2;
   }
+  model.femur_nodes_unbound = free_unsupported_nodes(faces, model.femur_nodes);
+  model.tibia_nodes_unbound = free_unsupported_nodes(faces, model.tibia_nodes);
   const auto femur_count = std::count(model.femur_nodes.begin(), model.femur_nodes.end(), true);
   const auto tibia_count = std::count(model.tibia_nodes.begin(), model.tibia_nodes.end(), true);
   if (femur_count == 0 || tibia_count == 0)

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace ligsim::model {
@@ -21,14 +22,27 @@ struct Model {
   std::vector<bool> femur_nodes; ///< #V: nodes bound to the femur (moved with it)
   std::vector<bool> tibia_nodes; ///< #V: nodes bound to the tibia (fixed)
   int boundary_nodes = 0;        ///< nodes on the mesh surface
+  int femur_nodes_unbound = 0;   ///< nodes the rule bound that no bound face supports
+  int tibia_nodes_unbound = 0;
 };
+
+/// The faces on the boundary of a tet mesh (those that belong to one tet only), corners sorted.
+std::vector<std::array<int, 3>> boundary_faces(const TetMesh& mesh);
 
 /// The nodes on the boundary of a tet mesh (on a face that belongs to one tet only).
 std::vector<bool> boundary_nodes(const TetMesh& mesh);
 
+/// A footprint is an area. A bound node that is not a corner of a boundary face (`faces`) whose
+/// three corners are all bound is held alone or in a line: a point constraint, beside which the
+/// fiber strain is singular (one such node on the female HRA MCL's femoral footprint carried
+/// elements at 67 % fiber strain at 90 degrees of flexion). Frees those nodes, repeatedly, until
+/// every bound node has a bound face; returns how many it freed.
+int free_unsupported_nodes(const std::vector<std::array<int, 3>>& faces, std::vector<bool>& bound);
+
 /// Builds the model. A boundary node is bound to a bone when the ligament-surface triangle
 /// nearest it has at least two vertices in that bone's attachment area (`femur_area`,
-/// `tibia_area`: sorted ligament-surface vertex indices). Throws InputError if either bone
+/// `tibia_area`: sorted ligament-surface vertex indices) and it is a corner of a boundary face
+/// so bound (free_unsupported_nodes). Throws InputError if either bone
 /// binds no node, or if `directions` does not hold one unit vector per tet.
 Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
                const TriangleSurface& ligament, const std::vector<int>& femur_area,

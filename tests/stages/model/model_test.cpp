@@ -139,5 +139,33 @@ TEST(FootprintClosing, NodesOfTheOtherBonesFootprintAreNeverTaken)
     EXPECT_FALSE(model.femur_nodes[v] && model.tibia_nodes[v]) << v;
 }
 
+TEST(FootprintArea, ANodeBoundAloneOrInALineIsFreedAndTheAreaKept)
+{
+  Model model = bar_model(9, 2.0);
+  const auto node = [](int i, int j, int k) { return (i * 3 + j) * 3 + k; };
+  const std::vector<bool> area = model.tibia_nodes;
+  // A lone surface node at x = 6 and a line of three across the side at x = 4: neither is a
+  // corner of a boundary face whose three corners are bound.
+  model.tibia_nodes[node(6, 2, 1)] = true;
+  for (int k = 0; k < 3; ++k)
+    model.tibia_nodes[node(4, 0, k)] = true;
+  EXPECT_EQ(free_unsupported_nodes(boundary_faces(model.mesh), model.tibia_nodes), 4);
+  EXPECT_EQ(model.tibia_nodes, area);
+}
+
+TEST(FootprintArea, OneSquareOfTheSurfaceIsAnAreaAndStays)
+{
+  Model model = bar_model(9, 2.0);
+  const auto node = [](int i, int j, int k) { return (i * 3 + j) * 3 + k; };
+  // The four corners of one square of the y = 0 side: both its triangles are bound faces,
+  // whichever diagonal cuts it.
+  for (int i = 4; i <= 5; ++i)
+    for (int k = 0; k <= 1; ++k)
+      model.tibia_nodes[node(i, 0, k)] = true;
+  const std::vector<bool> patch = model.tibia_nodes;
+  EXPECT_EQ(free_unsupported_nodes(boundary_faces(model.mesh), model.tibia_nodes), 0);
+  EXPECT_EQ(model.tibia_nodes, patch);
+}
+
 } // namespace
 } // namespace ligsim::model
