@@ -1,36 +1,20 @@
 #include "sim/contact/contact_surface.hpp"
 
+#include "common/tet_faces.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
-#include <map>
 
 namespace ligsim::sim {
 
 ContactSurface boundary_surface(const TetMesh& mesh)
 {
-  // Faces opposite each corner, ordered so that the normal points out of a positive tet.
-  static constexpr int face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;
-  for (Eigen::Index e = 0; e < mesh.T.rows(); ++e)
-    for (const auto& corners : face_corners) {
-      const std::array<int, 3> face = {mesh.T(e, corners[0]), mesh.T(e, corners[1]),
-                                       mesh.T(e, corners[2])};
-      std::array<int, 3> key = face;
-      std::sort(key.begin(), key.end());
-      auto [it, inserted] = faces.try_emplace(key, 1, face);
-      if (!inserted)
-        ++it->second.first;
-    }
+  const std::vector<std::array<int, 3>> boundary = tet_boundary_faces(mesh.T);
   ContactSurface surface;
   std::vector<double> area(static_cast<std::size_t>(mesh.V.rows()), 0.0);
-  std::vector<std::array<int, 3>> boundary;
-  for (const auto& [key, entry] : faces) {
-    if (entry.first != 1)
-      continue;
-    const std::array<int, 3>& f = entry.second;
-    boundary.push_back(f);
+  for (const std::array<int, 3>& f : boundary) {
     const Eigen::Vector3d a = mesh.V.row(f[0]).transpose();
     const Eigen::Vector3d b = mesh.V.row(f[1]).transpose();
     const Eigen::Vector3d c = mesh.V.row(f[2]).transpose();

@@ -1,6 +1,7 @@
 #include "stages/model/model.hpp"
 
 #include "common/error.hpp"
+#include "common/tet_faces.hpp"
 #include "stages/geometry/surface_query.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -8,31 +9,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 
 namespace ligsim::model {
-
-std::vector<std::array<int, 3>> boundary_faces(const TetMesh& mesh)
-{
-  static const int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<int, 3>, int> count;
-  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
-    for (const auto& f : faces) {
-      std::array<int, 3> key{mesh.T(t, f[0]), mesh.T(t, f[1]), mesh.T(t, f[2])};
-      std::sort(key.begin(), key.end());
-      ++count[key];
-    }
-  std::vector<std::array<int, 3>> boundary;
-  for (const auto& [face, n] : count)
-    if (n == 1)
-      boundary.push_back(face);
-  return boundary;
-}
 
 std::vector<bool> boundary_nodes(const TetMesh& mesh)
 {
   std::vector<bool> on_boundary(static_cast<std::size_t>(mesh.V.rows()), false);
-  for (const auto& face : boundary_faces(mesh))
+  for (const auto& face : tet_boundary_faces(mesh.T))
     for (int v : face)
       on_boundary[static_cast<std::size_t>(v)] = true;
   return on_boundary;
@@ -75,7 +58,7 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
   Model model;
   model.mesh = mesh;
   model.fibers = (1.0 + parameters.in_situ_strain) * directions;
-  const std::vector<std::array<int, 3>> faces = boundary_faces(mesh);
+  const std::vector<std::array<int, 3>> faces = tet_boundary_faces(mesh.T);
   const std::vector<bool> boundary = boundary_nodes(mesh);
   const std::size_t n = boundary.size();
   model.femur_nodes.assign(n, false);

@@ -26,9 +26,6 @@ struct Model {
   int tibia_nodes_unbound = 0;
 };
 
-/// The faces on the boundary of a tet mesh (those that belong to one tet only), corners sorted.
-std::vector<std::array<int, 3>> boundary_faces(const TetMesh& mesh);
-
 /// The nodes on the boundary of a tet mesh (on a face that belongs to one tet only).
 std::vector<bool> boundary_nodes(const TetMesh& mesh);
 

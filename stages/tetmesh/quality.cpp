@@ -1,4 +1,5 @@
 #include "common/error.hpp"
+#include "common/tet_faces.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
 #include "stages/tetmesh/tet_geometry.hpp"
@@ -7,34 +8,9 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <map>
 #include <vector>
 
 namespace ligsim::tetmesh {
-namespace {
-
-/// Faces that belong to exactly one tet, as vertex triples.
-std::vector<std::array<int, 3>> boundary_faces(const Tetrahedra& T)
-{
-  static constexpr int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> count; // sorted key
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (const auto& face : faces) {
-      const std::array<int, 3> vertices{T(t, face[0]), T(t, face[1]), T(t, face[2])};
-      std::array<int, 3> key = vertices;
-      std::sort(key.begin(), key.end());
-      auto& entry = count[key];
-      ++entry.first;
-      entry.second = vertices;
-    }
-  std::vector<std::array<int, 3>> boundary;
-  for (const auto& [key, entry] : count)
-    if (entry.first == 1)
-      boundary.push_back(entry.second);
-  return boundary;
-}
-
-} // namespace
 
 Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface)
 {
@@ -64,7 +40,7 @@ Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface)
 
   // One distance query for all points: boundary vertices, then facet centroids, then facet
   // circumcentres.
-  const auto faces = boundary_faces(mesh.T);
+  const auto faces = tet_boundary_faces(mesh.T);
   const auto face_count = static_cast<Eigen::Index>(faces.size());
   std::vector<char> on_boundary(static_cast<std::size_t>(mesh.V.rows()), 0);
   for (const auto& face : faces)

@@ -1,3 +1,4 @@
+#include "common/tet_faces.hpp"
 #include "stages/model/model.hpp"
 #include "stages/synthetic/shapes.hpp"
 
@@ -149,7 +150,7 @@ TEST(FootprintArea, ANodeBoundAloneOrInALineIsFreedAndTheAreaKept)
   model.tibia_nodes[node(6, 2, 1)] = true;
   for (int k = 0; k < 3; ++k)
     model.tibia_nodes[node(4, 0, k)] = true;
-  EXPECT_EQ(free_unsupported_nodes(boundary_faces(model.mesh), model.tibia_nodes), 4);
+  EXPECT_EQ(free_unsupported_nodes(tet_boundary_faces(model.mesh.T), model.tibia_nodes), 4);
   EXPECT_EQ(model.tibia_nodes, area);
 }
 
@@ -163,7 +164,7 @@ TEST(FootprintArea, OneSquareOfTheSurfaceIsAnAreaAndStays)
     for (int k = 0; k <= 1; ++k)
       model.tibia_nodes[node(i, 0, k)] = true;
   const std::vector<bool> patch = model.tibia_nodes;
-  EXPECT_EQ(free_unsupported_nodes(boundary_faces(model.mesh), model.tibia_nodes), 0);
+  EXPECT_EQ(free_unsupported_nodes(tet_boundary_faces(model.mesh.T), model.tibia_nodes), 0);
   EXPECT_EQ(model.tibia_nodes, patch);
 }
 
