@@ -70,8 +70,14 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
       {"flexion_axis", json_vector3(motion.jcs.flexion_axis)},
       {"tibial_axis", json_vector3(motion.jcs.tibial_axis)},
       {"reference", "Grood & Suntay, J Biomech Eng 1983;105:136"}};
-  parameters["material"] = material_json(settings.material);
-  parameters["in_situ_strain"] = settings.in_situ_strain;
+  // Unless the config or a flag sets them, each ligament keeps the material and in-situ strain
+  // it was built with (results.material, or results.ligaments.<name>.material, say which).
+  const char* built = "each ligament's own, as built (results)";
+  parameters["material"] =
+      settings.given.count("material") ? material_json(settings.material) : nlohmann::json(built);
+  parameters["in_situ_strain"] = settings.given.count("in_situ_strain")
+                                     ? nlohmann::json(settings.in_situ_strain)
+                                     : nlohmann::json(built);
   const sim::ContactConfig& contact = settings.contact;
   if (contact.enabled.value_or(true))
     parameters["contact"] = {

@@ -26,8 +26,8 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
       ->expected(3)
       ->excludes(axis);
   command.add_option("--in-situ-strain", options.in_situ_strain,
-                     "fiber pre-strain of the built pose (default 0.029; a knee model: each "
-                     "ligament's own, this sets them all)");
+                     "fiber pre-strain of the built pose (default: each ligament's own, as "
+                     "built; this sets them all)");
   command
       .add_option("--ligaments", options.ligaments,
                   "a knee model: the ligaments to sweep, by name (default: all)")

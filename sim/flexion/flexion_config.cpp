@@ -82,9 +82,9 @@ void read_ligament(TomlTable& table, LigamentSettings& ligament, std::set<std::s
 
 void read_material(TomlTable& table, FlexionSettings& settings)
 {
-  settings.given.insert("material");
-  if (table.has("in_situ_strain"))
-    settings.given.insert("in_situ_strain");
+  // A table with in_situ_strain alone leaves each ligament's material as it was built.
+  for (const std::string& key : table.keys())
+    settings.given.insert(key == "in_situ_strain" ? "in_situ_strain" : "material");
   MaterialParameters& material = settings.material;
   FiberParameters& fiber = *material.fiber;
   material.mu_mpa = table.number("mu_mpa", material.mu_mpa);

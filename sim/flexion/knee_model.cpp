@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "sim/scene/scene.hpp"
 #include "sim/scene/vtu_mesh.hpp"
 
 #include <vtkCellArray.h>
@@ -122,7 +123,7 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
             if (ligament.name == entry.name)
               return {std::move(ligament)};
         }
-    return {{single_name, load_knee_model(dir), dir, std::nullopt}};
+    return {{single_name, load_knee_model(dir), dir, std::nullopt, read_built_material(dir)}};
   }
   std::map<std::string, vtkSmartPointer<vtkPolyData>> bones;
   for (const auto& [name, file] : manifest->bones)
@@ -141,6 +142,17 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
     ligaments.push_back(std::move(ligament));
   }
   return ligaments;
+}
+
+std::optional<BuiltMaterial> read_built_material(const fs::path& dir)
+{
+  const fs::path file = dir / "scene.toml";
+  if (!fs::exists(file))
+    return std::nullopt;
+  const Scene scene = load_scene(file);
+  if (scene.fibers.rows() == 0)
+    return std::nullopt;
+  return BuiltMaterial{scene.material, scene.fibers.row(0).norm() - 1.0};
 }
 
 KneeModel load_knee_model(const fs::path& dir)

@@ -7,6 +7,7 @@
 #include "common/knee_anatomy.hpp"
 #include "common/knee_manifest.hpp"
 #include "common/mesh.hpp"
+#include "sim/material/material_parameters.hpp"
 
 #include <Eigen/Core>
 #include <vtkPolyData.h>
@@ -37,13 +38,25 @@ struct KneeModel {
 /// set, a bone surface, a fiber of zero length.
 KneeModel load_knee_model(const std::filesystem::path& dir);
 
+/// What a one-ligament model was built with: its scene.toml's material and the in-situ strain
+/// its fibers carry (the build config's [material] and [model] in_situ_strain).
+struct BuiltMaterial {
+  MaterialParameters material;
+  double in_situ_strain = 0.0;
+};
+
 /// One ligament of a model folder, with what the knee says of it.
 struct LigamentModel {
   std::string name;
   KneeModel model;                      ///< its mesh, with the knee's bones and anatomy
   std::filesystem::path folder;         ///< its model folder
   std::optional<KneeLigament> manifest; ///< knee.json's entry; none for a one-ligament model
+  std::optional<BuiltMaterial> built;   ///< a one-ligament model's, from its scene.toml
 };
+
+/// The material and in-situ strain of the model folder's scene.toml, none when it has none.
+/// Throws InputError naming the file where it cannot be read.
+std::optional<BuiltMaterial> read_built_material(const std::filesystem::path& dir);
 
 /// A model folder's ligaments: those knee.json lists (each loaded from its folder, with the
 /// knee's bones, anatomy.json and, for the ones bound to it, the fibula); for one ligament's

@@ -42,8 +42,13 @@ MaterialParameters material_from(const nlohmann::json& json, const std::string& 
 FlexionSettings ligament_settings(const FlexionSettings& settings, const LigamentModel& ligament)
 {
   FlexionSettings own = settings;
-  if (!ligament.manifest)
+  if (!ligament.manifest) {
+    if (ligament.built && !settings.given.count("material"))
+      own.material = ligament.built->material;
+    if (ligament.built && !settings.given.count("in_situ_strain"))
+      own.in_situ_strain = ligament.built->in_situ_strain;
     return own;
+  }
   const KneeLigament& entry = *ligament.manifest;
   const std::string where = fmt::format("knee.json, ligament {}", entry.name);
   own.ligament.name = entry.name;

@@ -174,6 +174,49 @@ TEST(FlexionCli, BadInputsAreRejectedBeforeAnythingIsWritten)
   expect_rejected("--model " + boneless.string() + " " + band_axis(), "tibia.vtp");
 }
 
+TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsThem)
+{
+  const std::string pid = std::to_string(::getpid());
+  const fs::path shape = fresh_folder("flexion_material_shape_" + pid);
+  ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+  const fs::path config = fresh_folder("flexion_material_build.toml");
+  std::ofstream(config) << "[input]\nsurface = \"" << (shape / "surface.stl").string()
+                        << "\"\nfemur = \"" << (shape / "femur.stl").string() << "\"\ntibia = \""
+                        << (shape / "tibia.stl").string()
+                        << "\"\n[voxelize]\nspacing_mm = 0.4\n[model]\nin_situ_strain = 0.05\n"
+                           "[material]\nmu_mpa = 3.5\nfiber_convention = \"weiss\"\n";
+  const fs::path model = fresh_folder("flexion_material_model");
+  const CliResult built =
+      run_ligsim("build --config " + config.string() + " --out " + model.string());
+  ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
+  const auto sweep = [&](const std::string& flexion_config) {
+    const fs::path out = fresh_folder("flexion_material");
+    std::string arguments = "flexion --model " + model.string() + " " + band_axis() +
+                            " --angles 0,15 --no-images --out " + out.string();
+    if (!flexion_config.empty()) {
+      const fs::path file = fresh_folder("flexion_material.toml");
+      std::ofstream(file) << flexion_config;
+      arguments += " --config " + file.string();
+    }
+    const CliResult result = run_ligsim(arguments);
+    EXPECT_EQ(result.exit_code, 0) << result.stderr_text;
+    return read_json(out / "summary.json")["results"];
+  };
+  const nlohmann::json own = sweep("");
+  EXPECT_EQ(own["material"]["mu_mpa"].get<double>(), 3.5);
+  EXPECT_EQ(own["material"]["convention"].get<std::string>(), "weiss");
+  EXPECT_NEAR(own["in_situ_strain"].get<double>(), 0.05, 1e-12);
+  // A [material] table with the in-situ strain alone keeps the built material.
+  const nlohmann::json strain_only = sweep("[material]\nin_situ_strain = 0.01\n");
+  EXPECT_EQ(strain_only["material"]["mu_mpa"].get<double>(), 3.5);
+  EXPECT_EQ(strain_only["in_situ_strain"].get<double>(), 0.01);
+  // Any other key sets the whole material, its missing keys at the paper's values.
+  const nlohmann::json set = sweep("[material]\nc4 = 50.0\n");
+  EXPECT_EQ(set["material"]["mu_mpa"].get<double>(), 27.7);
+  EXPECT_EQ(set["material"]["convention"].get<std::string>(), "paper");
+  EXPECT_NEAR(set["in_situ_strain"].get<double>(), 0.05, 1e-12);
+}
+
 TEST(FlexionCli, RealMclSweepsToNinetyDegrees)
 {
   const fs::path model = fresh_folder("flexion_mcl_model");
