@@ -35,15 +35,20 @@ std::optional<LigamentDefaults> ligament_defaults(const std::string& name)
   // Failure strain: only the MCL's is measured on human tissue here (Quapp & Weiss, J Biomech
   // Eng 1998;120:757); the others take it until a cited figure replaces it.
   const char* mcl_strain = "failure strain of the human MCL (Quapp & Weiss 1998)";
+  // Gardiner & Weiss' human MCL (J Orthop Res 2003;21:1098). Its ground substance, mu = 2 C1 =
+  // 2.88 MPa, gives a transverse tensile modulus 3 mu = 8.6 MPa, inside the 11.0 +- 3.6 MPa that
+  // Quapp & Weiss measured across human MCL fibers; the ligament paper's mu = 27.7 MPa gives 83.
+  const MaterialDefaults human_mcl = febio_form(1.44, 0.57, 48.0, 467.1, 1.063, 793.65);
   LigamentDefaults d;
   if (key == "MCL") {
-    d.material_source = "Weiss 1996 MCL, ligament paper sec. 4.2 (ligsim's default)";
+    d.material = human_mcl;
+    d.material_source = "Gardiner & Weiss 2003 (human MCL)";
     d.failure_load_n = 799.0;
     d.failure_source = std::string(mcl_strain) + "; 799 N (Wilson et al. 2012)";
     return d;
   }
   if (key == "LCL") {
-    d.material = febio_form(1.44, 0.57, 48.0, 467.1, 1.063, 793.65);
+    d.material = human_mcl;
     d.material_source = "Gardiner & Weiss 2003 MCL values, used for the LCL by Pena et al. 2006";
     d.failure_load_n = 392.0;
     d.failure_source = std::string(mcl_strain) + " (assumed); 392 N (Wilson et al. 2012)";

@@ -56,9 +56,9 @@ TEST(LabelmapKnee, TheHraKneeFromItsLabelMapBuildsAndFlexesInsidePublishedRanges
                  " --margin 40 --spacing 0.3 0.3 1 --out " + (dir / "knee.nrrd").string());
   ASSERT_EQ(map.exit_code, 0) << map.stderr_text;
 
-  // The build config of data/hra-knee/mcl-female.toml, with the labels for the surfaces; the
-  // atlas frame is not the scanner's LPS frame, so [anatomy] says where proximal and posterior
-  // are.
+  // The build config of data/hra-knee/mcl-female.toml (its material too), with the labels for
+  // the surfaces; the atlas frame is not the scanner's LPS frame, so [anatomy] says where
+  // proximal and posterior are.
   std::ofstream(dir / "build.toml")
       << "[input]\nlabels = \"knee.nrrd\"\nligament_label = \"mcl\"\nfemur_label = \"femur\"\n"
       << "tibia_label = \"tibia\"\n\n[anatomy]\nside = \"left\"\nproximal = [0, 1, 0]\n"
@@ -68,7 +68,9 @@ TEST(LabelmapKnee, TheHraKneeFromItsLabelMapBuildsAndFlexesInsidePublishedRanges
       << "landmark = \"medial_epicondyle\"\nproximal_mm = 3.2\nposterior_mm = 4.8\n"
       << "radius_mm = 6.0\n\n[attachments.tibia]\nrule = \"end\"\nend = \"distal\"\n"
       << "end_length_mm = 15.0\nbone_distance_mm = 2.0\n\n[centerline]\nalpha = 0.1\n"
-      << "span = \"attachments\"\n\n[tetmesh]\ncell_size_mm = 1.5\n";
+      << "span = \"attachments\"\n\n[tetmesh]\ncell_size_mm = 1.5\n\n[material]\nmu_mpa = 2.88\n"
+      << "c3_mpa = 0.57\nc4 = 48.0\nc5_mpa = 467.1\nlambda_star = 1.063\n"
+      << "bulk_modulus_mpa = 793.65\nfiber_convention = \"weiss\"\nvolumetric = \"lnj\"\n";
   const CliResult build = run_ligsim("build --config " + (dir / "build.toml").string() + " --out " +
                                      (dir / "model").string());
   ASSERT_EQ(build.exit_code, 0) << build.stderr_text;
