@@ -7,6 +7,7 @@
 #include "sim/febio/feb_writer.hpp"
 #include "sim/febio/knee_feb.hpp"
 #include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/knee_sweep.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -32,7 +33,8 @@ void run_export_febio(const ExportOptions& options)
 {
   if (options.out.extension() != ".feb")
     fail("export febio: --out {}: give a file name ending in .feb", options.out.string());
-  const sim::FlexionSettings settings = flexion_settings_from(options.flexion, "export febio");
+  sim::FlexionSettings settings = flexion_settings_from(options.flexion, "export febio");
+  sim::use_folder_material(settings);
   const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
   const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   const sim::BoundaryConditions conditions =

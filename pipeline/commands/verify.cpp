@@ -9,6 +9,7 @@
 #include "common/svg_plot.hpp"
 #include "sim/febio/febio_cross_check.hpp"
 #include "sim/flexion/flexion_config.hpp"
+#include "sim/flexion/knee_sweep.hpp"
 #include "sim/verify/cube_compression.hpp"
 #include "sim/verify/cube_verification.hpp"
 #include "sim/verify/flexion_stability.hpp"
@@ -378,6 +379,7 @@ void run_verify_febio(const FebioOptions& options)
   RunSummary summary("verify febio");
   const auto start = std::chrono::steady_clock::now();
   sim::FlexionSettings settings = flexion_settings_from(options.flexion, "verify febio");
+  sim::use_folder_material(settings);
   settings.images = false;
   if (settings.material.fiber->convention == sim::FiberConvention::paper) {
     settings.material.fiber->convention = sim::FiberConvention::weiss;

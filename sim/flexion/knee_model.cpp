@@ -106,23 +106,30 @@ vtkPolyData* bone_of(const KneeModel& model, const std::string& name)
   return nullptr;
 }
 
+std::optional<std::pair<fs::path, KneeLigament>> knee_of_ligament_folder(const fs::path& dir)
+{
+  const fs::path folder = fs::absolute(dir).lexically_normal();
+  const fs::path knee =
+      folder.has_filename() ? folder.parent_path() : folder.parent_path().parent_path();
+  const std::string name = (folder.has_filename() ? folder : folder.parent_path()).filename();
+  if (const auto parent = read_knee_manifest(knee))
+    for (const KneeLigament& entry : parent->ligaments)
+      if (entry.folder == name)
+        return std::make_pair(knee, entry);
+  return std::nullopt;
+}
+
 std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& single_name)
 {
   const std::optional<KneeManifest> manifest = read_knee_manifest(dir);
   if (!manifest) {
     // One ligament's folder of a knee: that ligament of the knee, with the knee's bones.
-    const fs::path folder = fs::absolute(dir).lexically_normal();
-    const fs::path knee =
-        folder.has_filename() ? folder.parent_path() : folder.parent_path().parent_path();
-    const std::string name = (folder.has_filename() ? folder : folder.parent_path()).filename();
-    if (const auto parent = read_knee_manifest(knee))
-      for (const KneeLigament& entry : parent->ligaments)
-        if (entry.folder == name) {
-          std::vector<LigamentModel> all = load_knee(knee, single_name);
-          for (LigamentModel& ligament : all)
-            if (ligament.name == entry.name)
-              return {std::move(ligament)};
-        }
+    if (const auto knee = knee_of_ligament_folder(dir)) {
+      std::vector<LigamentModel> all = load_knee(knee->first, single_name);
+      for (LigamentModel& ligament : all)
+        if (ligament.name == knee->second.name)
+          return {std::move(ligament)};
+    }
     return {{single_name, load_knee_model(dir), dir, std::nullopt, read_built_material(dir)}};
   }
   std::map<std::string, vtkSmartPointer<vtkPolyData>> bones;

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ligsim::sim {
@@ -53,6 +54,10 @@ struct LigamentModel {
   std::optional<KneeLigament> manifest; ///< knee.json's entry; none for a one-ligament model
   std::optional<BuiltMaterial> built;   ///< a one-ligament model's, from its scene.toml
 };
+
+/// For one ligament's folder of a knee model: the knee's folder and knee.json's entry of it.
+std::optional<std::pair<std::filesystem::path, KneeLigament>>
+knee_of_ligament_folder(const std::filesystem::path& dir);
 
 /// The material and in-situ strain of the model folder's scene.toml, none when it has none.
 /// Throws InputError naming the file where it cannot be read.

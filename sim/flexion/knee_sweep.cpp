@@ -70,6 +70,19 @@ FlexionSettings ligament_settings(const FlexionSettings& settings, const Ligamen
   return own;
 }
 
+void use_folder_material(FlexionSettings& settings)
+{
+  LigamentModel ligament;
+  ligament.name = settings.ligament.name;
+  if (const auto knee = knee_of_ligament_folder(settings.model_dir))
+    ligament.manifest = knee->second;
+  else
+    ligament.built = read_built_material(settings.model_dir);
+  const FlexionSettings own = ligament_settings(settings, ligament);
+  settings.material = own.material;
+  settings.in_situ_strain = own.in_situ_strain;
+}
+
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
                                             const FlexionSettings& settings)
 {

@@ -24,6 +24,12 @@ namespace ligsim::sim {
 /// takes `settings` as they are. The bones it meets by contact: the config's, else knee.json's.
 FlexionSettings ligament_settings(const FlexionSettings& settings, const LigamentModel& ligament);
 
+/// Gives `settings` the material and in-situ strain that `ligsim flexion` gives the one
+/// ligament of the model folder `settings.model_dir` (its knee's knee.json entry, or its own
+/// scene.toml), except what the config or the flags set: what `export febio` and `verify febio`
+/// use, so that they run the flexion's problem.
+void use_folder_material(FlexionSettings& settings);
+
 /// The ligaments of `all` that settings.ligaments names (all of them when empty). Throws
 /// InputError naming an unknown ligament, or a [ligament] table naming none of the knee's.
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,

@@ -89,6 +89,29 @@ TEST(ExportCli, FebioFileHoldsTheModel)
   EXPECT_NE(feb.find("type=\"sliding-elastic\""), std::string::npos); // contact on by default
 }
 
+TEST(ExportCli, TheModelsOwnMaterialIsExportedAsTheFlexionUsesIt)
+{
+  // The band model as if built with [material] mu_mpa = 5 (FEBio's c1 = mu / 2).
+  const fs::path model = fresh_folder("export_own_material");
+  fs::copy(band_model(), model, fs::copy_options::recursive);
+  std::string scene = text(model / "scene.toml");
+  const std::size_t mu = scene.find("mu_mpa = ");
+  ASSERT_NE(mu, std::string::npos);
+  scene.replace(mu, scene.find('\n', mu) - mu, "mu_mpa = 5");
+  std::ofstream(model / "scene.toml") << scene;
+  const fs::path out = fresh_folder("export_own_material_feb") / "band.feb";
+  const std::string command = "export febio --model " + model.string() + " " + band_axis() +
+                              " --angles 0,45 --out " + out.string();
+  const CliResult result = run_ligsim(command);
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  EXPECT_NE(text(out).find("<c1>2.5</c1>"), std::string::npos);
+  // A flexion config's material replaces it (its missing keys at the paper's values).
+  const fs::path config = fresh_folder("export_own_material.toml");
+  std::ofstream(config) << "[material]\nc4 = 61.44\n";
+  ASSERT_EQ(run_ligsim(command + " --config " + config.string()).exit_code, 0);
+  EXPECT_NE(text(out).find("<c1>13.85</c1>"), std::string::npos);
+}
+
 TEST(ExportCli, FebioPenaltyIsWrittenAndMustBePositive)
 {
   const fs::path out = fresh_folder("export_penalty") / "band.feb";
