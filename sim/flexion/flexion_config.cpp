@@ -123,6 +123,9 @@ void read_interactive(TomlTable& table, InteractiveSettings& interactive)
       table.number("mass_damping_per_s", interactive.mass_damping_per_s);
   if (table.has("linear_solver"))
     interactive.linear_solver = parse_linear_solver(table.text("linear_solver", ""), table.where());
+  interactive.max_iterations = table.integer("max_iterations", interactive.max_iterations);
+  interactive.iteration_tolerance =
+      table.number("iteration_tolerance", interactive.iteration_tolerance);
   table.reject_unknown_keys();
 }
 

@@ -34,6 +34,10 @@ void validate(const FlexionSettings& settings)
     fail("flexion: the time step must be positive, got {} s", interactive.time_step_s);
   if (!(interactive.density_kg_m3 > 0.0) || !(interactive.mass_damping_per_s >= 0.0))
     fail("flexion: the density must be positive and the damping not negative");
+  if (interactive.max_iterations < 1 || !(interactive.iteration_tolerance > 0.0))
+    fail("flexion: [interactive] max_iterations must be at least 1 and iteration_tolerance "
+         "positive, got {} and {}",
+         interactive.max_iterations, interactive.iteration_tolerance);
   if (!settings.anatomy.side.empty() && settings.anatomy.side != "left" &&
       settings.anatomy.side != "right")
     fail("flexion: [anatomy] side must be \"left\" or \"right\", got \"{}\"",

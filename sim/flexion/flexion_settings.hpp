@@ -79,6 +79,11 @@ struct InteractiveSettings {
   double density_kg_m3 = 1100.0;
   double mass_damping_per_s = 10.0; ///< Rayleigh alpha
   LinearSolverKind linear_solver = LinearSolverKind::direct;
+  /// Linear solves per frame at most (DynamicsSettings::max_iterations): Newton goes on while a
+  /// frame's implicit Euler equation is off by more than `iteration_tolerance` of the supports'
+  /// force. 1: the paper's one solve per frame.
+  int max_iterations = 4;
+  double iteration_tolerance = 1e-2;
 };
 
 struct FlexionSettings {

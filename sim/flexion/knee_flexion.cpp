@@ -174,6 +174,8 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
   dynamics.density_kg_m3 = interactive.density_kg_m3;
   dynamics.mass_damping_per_s = interactive.mass_damping_per_s;
   dynamics.linear_solver = interactive.linear_solver;
+  dynamics.max_iterations = interactive.max_iterations;
+  dynamics.iteration_tolerance = interactive.iteration_tolerance;
   dynamics.pcg = settings.newton.pcg;
   ImplicitEuler solver(body, conditions, dynamics);
   const bool contact_on = contact && settings.contact.enabled.value_or(true);

@@ -37,6 +37,10 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
     fail("dynamics: density_kg_m3 must be positive, got {}", settings.density_kg_m3);
   if (settings.mass_damping_per_s < 0.0 || settings.stiffness_damping_s < 0.0)
     fail("dynamics: damping coefficients must not be negative");
+  if (settings.max_iterations < 1)
+    fail("dynamics: max_iterations must be at least 1, got {}", settings.max_iterations);
+  if (!(settings.iteration_tolerance > 0.0))
+    fail("dynamics: iteration_tolerance must be positive, got {}", settings.iteration_tolerance);
   if (m_dofs.free_count() == 0)
     fail("every degree of freedom is prescribed: nothing to solve");
 
@@ -66,74 +70,96 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
   if (m_extra)
     m_extra->make_admissible(x, t);
-  std::vector<NodeBlock> blocks;
-  if (m_extra)
-    m_extra->hessian_blocks(x, t, true, blocks);
 
-  // (M (1 + h alpha) + (h^2 + h beta) K) dv = h f - h (h + beta) K v - h alpha M v
-  //                                         = h f - (A v - M v).
-  // The matrix's pass over the elements gives the body's energy and gradient too.
+  // With A = M (1 + h alpha) + (h^2 + h beta) K, the first solve linearises at the step's start
+  // (free nodes not yet moved by h v):
+  //   A dv = h f - h (h + beta) K v - h alpha M v = h f - (A v - M v);
+  // later ones are Newton on the same equation at x = x_start + h v:
+  //   A dv = h f - M (1 + h alpha) v + M v_start - h beta K v.
   const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
   const double stiffness_scale = h * h + h * beta;
   bool project = m_settings.projection == PsdProjection::always;
-  BodyEnergy energy;
-  Eigen::VectorXd gradient;
-  report.projected_elements +=
-      m_linear.prepare(x, project, stiffness_scale, mass_term, blocks, &energy, &gradient);
-  if (!std::isfinite(energy.energy)) {
-    m_failure = fmt::format("moving the prescribed nodes inverts element {} (J = {:.3g})",
-                            energy.first_inverted, energy.inverted_j);
-    return false;
-  }
-  gradient -= t * m_external;
-  if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient))) {
-    m_failure = "a node lies inside a contact obstacle and could not be moved out";
-    return false;
-  }
-
-  Eigen::VectorXd force(m_dofs.free_count());
-  Eigen::VectorXd velocity(m_dofs.free_count());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
-    force(static_cast<Eigen::Index>(f)) = -gradient(free_dofs[f]);
-    velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
-  }
-  Eigen::VectorXd dv;
-  for (bool prepared = true;; prepared = false) {
-    if (!prepared)
-      report.projected_elements += m_linear.prepare(x, project, stiffness_scale, mass_term, blocks);
-    Eigen::VectorXd Av;
-    m_linear.multiply(velocity, Av);
-    const Eigen::VectorXd rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
-    dv = Eigen::VectorXd::Zero(rhs.size());
-    const LinearSolveReport solve = m_linear.solve(rhs, dv);
-    report.linear_iterations += solve.iterations;
-    report.factorizations += solve.factorizations;
-    if (solve.ok && dv.allFinite())
-      break;
-    if (solve.indefinite && !project && m_settings.projection == PsdProjection::automatic) {
-      project = true;
-      continue;
+  Eigen::VectorXd start_velocity(m_dofs.free_count());
+  for (std::size_t f = 0; f < free_dofs.size(); ++f)
+    start_velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
+  Eigen::VectorXd velocity = start_velocity;
+  for (int iteration = 0; iteration < m_settings.max_iterations; ++iteration) {
+    std::vector<NodeBlock> blocks;
+    if (m_extra)
+      m_extra->hessian_blocks(x, t, true, blocks);
+    // The matrix's pass over the elements gives the body's energy and gradient too.
+    BodyEnergy energy;
+    Eigen::VectorXd gradient;
+    report.projected_elements +=
+        m_linear.prepare(x, project, stiffness_scale, mass_term, blocks, &energy, &gradient);
+    if (!std::isfinite(energy.energy)) {
+      m_failure = fmt::format("{} inverts element {} (J = {:.3g})",
+                              iteration == 0 ? "moving the prescribed nodes" : "the step",
+                              energy.first_inverted, energy.inverted_j);
+      return false;
     }
-    m_failure = solve.indefinite
-                    ? "the system matrix is indefinite"
-                    : fmt::format("the linear solver did not converge (relative residual {:.3g})",
-                                  solve.relative_residual);
-    return false;
+    gradient -= t * m_external;
+    if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient))) {
+      m_failure = "a node lies inside a contact obstacle and could not be moved out";
+      return false;
+    }
+    Eigen::VectorXd force(m_dofs.free_count());
+    for (std::size_t f = 0; f < free_dofs.size(); ++f)
+      force(static_cast<Eigen::Index>(f)) = -gradient(free_dofs[f]);
+
+    Eigen::VectorXd dv;
+    for (bool prepared = true;; prepared = false) {
+      if (!prepared)
+        report.projected_elements +=
+            m_linear.prepare(x, project, stiffness_scale, mass_term, blocks);
+      Eigen::VectorXd Av;
+      m_linear.multiply(velocity, Av);
+      Eigen::VectorXd rhs;
+      if (iteration == 0) {
+        rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
+      } else {
+        rhs =
+            h * force - mass_term.cwiseProduct(velocity) + m_free_mass.cwiseProduct(start_velocity);
+        if (beta > 0.0) // h beta K v, with K v from A v
+          rhs -= (h * beta / stiffness_scale) * (Av - mass_term.cwiseProduct(velocity));
+      }
+      dv = Eigen::VectorXd::Zero(rhs.size());
+      const LinearSolveReport solve = m_linear.solve(rhs, dv);
+      report.linear_iterations += solve.iterations;
+      report.factorizations += solve.factorizations;
+      if (solve.ok && dv.allFinite())
+        break;
+      if (solve.indefinite && !project && m_settings.projection == PsdProjection::automatic) {
+        project = true;
+        continue;
+      }
+      m_failure = solve.indefinite
+                      ? "the system matrix is indefinite"
+                      : fmt::format("the linear solver did not converge (relative residual {:.3g})",
+                                    solve.relative_residual);
+      return false;
+    }
+    // The move (h (v + dv) from the step's start, h dv after it) stops short of any contact
+    // surface; the velocity change shrinks with it.
+    const Eigen::VectorXd move = h * (iteration == 0 ? Eigen::VectorXd(velocity + dv) : dv);
+    double fraction = 1.0;
+    if (m_extra) {
+      Eigen::VectorXd full = Eigen::VectorXd::Zero(x.size());
+      for (std::size_t f = 0; f < free_dofs.size(); ++f)
+        full(free_dofs[f]) = move(static_cast<Eigen::Index>(f));
+      fraction = std::clamp(m_extra->max_step(x, full, t), 0.0, 1.0);
+    }
+    velocity = iteration == 0 ? Eigen::VectorXd(fraction * (velocity + dv))
+                              : Eigen::VectorXd(velocity + fraction * dv);
+    for (std::size_t f = 0; f < free_dofs.size(); ++f)
+      x(free_dofs[f]) += fraction * move(static_cast<Eigen::Index>(f));
+    // Done when the move went all the way and the step's equation holds to
+    // `iteration_tolerance` of the supports' force; else Newton goes on from here.
+    if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term))
+      break;
   }
   for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    v(free_dofs[f]) += dv(static_cast<Eigen::Index>(f));
-  if (m_extra) {
-    // The move h v stops short of any contact surface; the velocity shrinks with it.
-    Eigen::VectorXd move = Eigen::VectorXd::Zero(x.size());
-    for (int dof : free_dofs)
-      move(dof) = h * v(dof);
-    const double fraction = std::clamp(m_extra->max_step(x, move, t), 0.0, 1.0);
-    if (fraction < 1.0)
-      for (int dof : free_dofs)
-        v(dof) *= fraction;
-  }
-  for (int dof : free_dofs)
-    x(dof) += h * v(dof);
+    v(free_dofs[f]) = velocity(static_cast<Eigen::Index>(f));
   const BodyEnergy after = m_body.energy_gradient(x, m_end_gradient);
   m_end_energy = after.energy;
   if (!std::isfinite(after.energy)) {
@@ -146,6 +172,36 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     return false;
   }
   return true;
+}
+
+bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
+                              const Eigen::VectorXd& velocity,
+                              const Eigen::VectorXd& start_velocity,
+                              const Eigen::VectorXd& mass_term) const
+{
+  if (m_settings.max_iterations <= 1)
+    return true;
+  Eigen::VectorXd gradient;
+  if (!std::isfinite(m_body.energy_gradient(x, gradient).energy))
+    return true; // the caller reports the inverted element
+  gradient -= t * m_external;
+  if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient)))
+    return true;
+  // The equation's residual h f - M (1 + h alpha) v + M v_start (the stiffness damping's
+  // h beta K v left out: it needs the matrix) against h times the supports' force.
+  double residual2 = 0.0, reaction2 = 0.0;
+  const auto& free_dofs = m_dofs.free_dofs();
+  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
+    const auto i = static_cast<Eigen::Index>(f);
+    const double r = -h * gradient(free_dofs[f]) - mass_term(i) * velocity(i) +
+                     m_free_mass(i) * start_velocity(i);
+    residual2 += r * r;
+  }
+  for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
+    if (!m_dofs.is_free(dof))
+      reaction2 += gradient(dof) * gradient(dof);
+  const double scale = h * std::max({(t * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+  return std::sqrt(residual2) <= m_settings.iteration_tolerance * scale;
 }
 
 DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_frame)
