@@ -153,20 +153,21 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
                               : Eigen::VectorXd(velocity + fraction * dv);
     for (std::size_t f = 0; f < free_dofs.size(); ++f)
       x(free_dofs[f]) += fraction * move(static_cast<Eigen::Index>(f));
-    // Done when the move went all the way and the step's equation holds to
-    // `iteration_tolerance` of the supports' force; else Newton goes on from here.
+    // The state's energy and gradient: the step's result if it is done, which it is when the
+    // move went all the way and the step's equation holds to `iteration_tolerance` of the
+    // supports' force; else Newton goes on from here.
+    const BodyEnergy after = m_body.energy_gradient(x, m_end_gradient);
+    m_end_energy = after.energy;
+    if (!std::isfinite(after.energy)) {
+      m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
+                              after.inverted_j);
+      return false;
+    }
     if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term))
       break;
   }
   for (std::size_t f = 0; f < free_dofs.size(); ++f)
     v(free_dofs[f]) = velocity(static_cast<Eigen::Index>(f));
-  const BodyEnergy after = m_body.energy_gradient(x, m_end_gradient);
-  m_end_energy = after.energy;
-  if (!std::isfinite(after.energy)) {
-    m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
-                            after.inverted_j);
-    return false;
-  }
   if (m_extra && !std::isfinite(m_extra->energy(x, t, nullptr))) {
     m_failure = "the step would move a node across a contact surface";
     return false;
@@ -181,12 +182,9 @@ bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
 {
   if (m_settings.max_iterations <= 1)
     return true;
-  Eigen::VectorXd gradient;
-  if (!std::isfinite(m_body.energy_gradient(x, gradient).energy))
-    return true; // the caller reports the inverted element
-  gradient -= t * m_external;
+  Eigen::VectorXd gradient = m_end_gradient - t * m_external;
   if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient)))
-    return true;
+    return true; // the caller reports it
   // The equation's residual h f - M (1 + h alpha) v + M v_start (the stiffness damping's
   // h beta K v left out: it needs the matrix) against h times the supports' force.
   double residual2 = 0.0, reaction2 = 0.0;

@@ -41,7 +41,7 @@ struct DynamicsSettings {
   /// femoral footprint squeezed to J = 0.1 and 2.8 kN on the femur, where the quasi-static sweep
   /// gives J = 0.95 and 20 N).
   int max_iterations = 1;
-  double iteration_tolerance = 1e-2;
+  double iteration_tolerance = 0.1;
 };
 
 struct FrameReport {
@@ -97,7 +97,8 @@ private:
   /// One implicit Euler step of length h to load factor t; false on failure.
   bool step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t, FrameReport& report);
   /// Whether the implicit Euler equation of a step holds at x (with velocity v, from
-  /// start_velocity) to iteration_tolerance; true without iterations to do.
+  /// start_velocity; the body's gradient at x in m_end_gradient) to iteration_tolerance; true
+  /// without iterations to do.
   bool converged(const Eigen::VectorXd& x, double h, double t, const Eigen::VectorXd& velocity,
                  const Eigen::VectorXd& start_velocity, const Eigen::VectorXd& mass_term) const;
 
