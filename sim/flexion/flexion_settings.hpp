@@ -83,7 +83,7 @@ struct InteractiveSettings {
   /// frame's implicit Euler equation is off by more than `iteration_tolerance` of the supports'
   /// force. 1: the paper's one solve per frame.
   int max_iterations = 4;
-  double iteration_tolerance = 0.1;
+  double iteration_tolerance = 0.03;
 };
 
 struct FlexionSettings {

@@ -16,6 +16,9 @@ namespace {
 /// kg/m^3 to t/mm^3, the mass unit consistent with mm, N and s.
 constexpr double kg_per_m3_to_t_per_mm3 = 1e-12;
 
+/// Halvings of a Newton move that would invert an element before the step fails.
+constexpr int max_backtracks = 10;
+
 } // namespace
 
 ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditions& conditions,
@@ -149,20 +152,30 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
         full(free_dofs[f]) = move(static_cast<Eigen::Index>(f));
       fraction = std::clamp(m_extra->max_step(x, full, t), 0.0, 1.0);
     }
-    velocity = iteration == 0 ? Eigen::VectorXd(fraction * (velocity + dv))
-                              : Eigen::VectorXd(velocity + fraction * dv);
-    for (std::size_t f = 0; f < free_dofs.size(); ++f)
-      x(free_dofs[f]) += fraction * move(static_cast<Eigen::Index>(f));
     // The state's energy and gradient: the step's result if it is done, which it is when the
     // move went all the way and the step's equation holds to `iteration_tolerance` of the
-    // supports' force; else Newton goes on from here.
-    const BodyEnergy after = m_body.energy_gradient(x, m_end_gradient);
+    // supports' force; else Newton goes on from here. With Newton iterations to come, a move
+    // that would invert an element is halved instead (with one solve, the time step is).
+    const Eigen::VectorXd x_before = x;
+    BodyEnergy after;
+    for (int backtrack = 0;; ++backtrack) {
+      x = x_before;
+      for (std::size_t f = 0; f < free_dofs.size(); ++f)
+        x(free_dofs[f]) += fraction * move(static_cast<Eigen::Index>(f));
+      after = m_body.energy_gradient(x, m_end_gradient);
+      if (std::isfinite(after.energy) || m_settings.max_iterations == 1 ||
+          backtrack == max_backtracks)
+        break;
+      fraction *= 0.5;
+    }
     m_end_energy = after.energy;
     if (!std::isfinite(after.energy)) {
       m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
                               after.inverted_j);
       return false;
     }
+    velocity = iteration == 0 ? Eigen::VectorXd(fraction * (velocity + dv))
+                              : Eigen::VectorXd(velocity + fraction * dv);
     if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term))
       break;
   }

@@ -41,7 +41,7 @@ struct DynamicsSettings {
   /// femoral footprint squeezed to J = 0.1 and 2.8 kN on the femur, where the quasi-static sweep
   /// gives J = 0.95 and 20 N).
   int max_iterations = 1;
-  double iteration_tolerance = 0.1;
+  double iteration_tolerance = 0.03;
 };
 
 struct FrameReport {

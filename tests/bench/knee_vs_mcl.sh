@@ -42,11 +42,7 @@ echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf "| job (contact %s) | knee: wall s | MCL: wall s | knee / MCL | knee: peak MiB | MCL: peak MiB |\n" "$CONTACT"
 printf "| --- | ---: | ---: | ---: | ---: | ---: |\n"
 for job in build static interactive; do
-  kw=$(cut -d' ' -f1 "$OUT/${job}_knee.times" | median)
-  mw=$(cut -d' ' -f1 "$OUT/${job}_mcl.times" | median)
-  km=$(cut -d' ' -f2 "$OUT/${job}_knee.times" | median | awk '{print $1 / 1024}')
-  mm=$(cut -d' ' -f2 "$OUT/${job}_mcl.times" | median | awk '{print $1 / 1024}')
-  printf "| %s | %.1f | %.1f | %.2f | %.0f | %.0f |\n" "$job" "$kw" "$mw" "$(echo "$kw / $mw" | bc -l)" "$km" "$mm"
+  compare_row "$job" "${job}_knee" "${job}_mcl"
 done
 printf "| interactive frames per second (median of %d) | %.1f | %.1f | | | |\n" "$ROUNDS" \
   "$(median < "$OUT/interactive_knee.fps")" "$(median < "$OUT/interactive_mcl.fps")"

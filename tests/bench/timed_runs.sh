@@ -2,6 +2,8 @@
 #   run NAME COMMAND...  runs COMMAND, its output in OUT/NAME.out, and appends "wall_s peak_kib"
 #                        (/usr/bin/time) to OUT/NAME.times; stops the script if it fails.
 #   median               the median of the numbers on stdin, one per line.
+#   compare_row LABEL A B  a table row: the median wall seconds of runs A and B, their ratio
+#                        A / B, and their median peak MiB.
 
 run() {
   local name=$1
@@ -12,3 +14,12 @@ run() {
 }
 
 median() { sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'; }
+
+compare_row() {
+  local aw bw am bm
+  aw=$(cut -d' ' -f1 "$OUT/$2.times" | median)
+  bw=$(cut -d' ' -f1 "$OUT/$3.times" | median)
+  am=$(cut -d' ' -f2 "$OUT/$2.times" | median | awk '{print $1 / 1024}')
+  bm=$(cut -d' ' -f2 "$OUT/$3.times" | median | awk '{print $1 / 1024}')
+  printf "| %s | %.1f | %.1f | %.2f | %.0f | %.0f |\n" "$1" "$aw" "$bw" "$(echo "$aw / $bw" | bc -l)" "$am" "$bm"
+}
