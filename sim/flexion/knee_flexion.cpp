@@ -194,7 +194,8 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
         AngleResult angle;
         angle.frame = frame.frame;
         angle.load_factor = frame.load_factor;
-        angle.converged = true;
+        // A frame whose solves ran out before its equation held is not the pose's state.
+        angle.converged = frame.equation_met;
         angle.strain_energy_mj = frame.strain_energy_mj;
         angle.newton_iterations = solves;
         angle.substeps = frame.substeps;

@@ -86,10 +86,14 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   for (std::size_t f = 0; f < free_dofs.size(); ++f)
     start_velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
   Eigen::VectorXd velocity = start_velocity;
+  m_step_met = false;
   for (int iteration = 0; iteration < m_settings.max_iterations; ++iteration) {
+    // The contact's exact Hessian blocks in Newton's iterations (their projection drops the
+    // bone's curvature and makes Newton linear on sliding nodes), projected in the first solve
+    // and wherever the matrix is indefinite with them.
     std::vector<NodeBlock> blocks;
     if (m_extra)
-      m_extra->hessian_blocks(x, t, true, blocks);
+      m_extra->hessian_blocks(x, t, iteration == 0 || project, blocks);
     // The matrix's pass over the elements gives the body's energy and gradient too.
     BodyEnergy energy;
     Eigen::VectorXd gradient;
@@ -112,9 +116,12 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
 
     Eigen::VectorXd dv;
     for (bool prepared = true;; prepared = false) {
-      if (!prepared)
+      if (!prepared) {
+        if (m_extra)
+          m_extra->hessian_blocks(x, t, true, blocks);
         report.projected_elements +=
             m_linear.prepare(x, project, stiffness_scale, mass_term, blocks);
+      }
       Eigen::VectorXd Av;
       m_linear.multiply(velocity, Av);
       Eigen::VectorXd rhs;
@@ -176,8 +183,10 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     }
     velocity = iteration == 0 ? Eigen::VectorXd(fraction * (velocity + dv))
                               : Eigen::VectorXd(velocity + fraction * dv);
-    if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term))
+    if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term)) {
+      m_step_met = true;
       break;
+    }
   }
   for (std::size_t f = 0; f < free_dofs.size(); ++f)
     v(free_dofs[f]) = velocity(static_cast<Eigen::Index>(f));
@@ -199,8 +208,9 @@ bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
   if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient)))
     return true; // the caller reports it
   // The equation's residual h f - M (1 + h alpha) v + M v_start (the stiffness damping's
-  // h beta K v left out: it needs the matrix) against h times the supports' force.
-  double residual2 = 0.0, reaction2 = 0.0;
+  // h beta K v left out: it needs the matrix) against h times the supports' force at the last
+  // accepted frame (not this state's, which a wrong state inflates).
+  double residual2 = 0.0;
   const auto& free_dofs = m_dofs.free_dofs();
   for (std::size_t f = 0; f < free_dofs.size(); ++f) {
     const auto i = static_cast<Eigen::Index>(f);
@@ -208,11 +218,20 @@ bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
                      m_free_mass(i) * start_velocity(i);
     residual2 += r * r;
   }
+  const double scale = h * std::max({(t * m_external).norm(), m_support_force, m_force_floor});
+  return std::sqrt(residual2) <= m_settings.iteration_tolerance * scale;
+}
+
+double ImplicitEuler::support_force(const Eigen::VectorXd& x) const
+{
+  Eigen::VectorXd gradient;
+  if (!std::isfinite(m_body.energy_gradient(x, gradient).energy))
+    return 0.0;
+  double reaction2 = 0.0;
   for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
     if (!m_dofs.is_free(dof))
       reaction2 += gradient(dof) * gradient(dof);
-  const double scale = h * std::max({(t * m_external).norm(), std::sqrt(reaction2), m_force_floor});
-  return std::sqrt(residual2) <= m_settings.iteration_tolerance * scale;
+  return std::sqrt(reaction2);
 }
 
 DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_frame)
@@ -225,6 +244,7 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
   }
   Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
   const double h = m_settings.time_step_s;
+  m_support_force = support_force(x);
   for (int frame = 1; frame <= m_settings.frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     FrameReport report;
@@ -242,9 +262,11 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
       x = x_saved;
       v = v_saved;
       done = true;
+      report.equation_met = true;
       for (int s = 1; s <= substeps && done; ++s) {
         const double t = t_before + (report.load_factor - t_before) * s / substeps;
         done = step(x, v, h / substeps, t, report);
+        report.equation_met = report.equation_met && m_step_met;
       }
       report.substeps = substeps;
     }
@@ -276,6 +298,7 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
         reaction2 += gradient(dof) * gradient(dof);
       }
     }
+    m_support_force = std::sqrt(reaction2);
     const double scale =
         std::max({(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
     report.relative_residual = std::sqrt(residual2) / scale;

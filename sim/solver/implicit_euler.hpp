@@ -35,7 +35,8 @@ struct DynamicsSettings {
   int max_halvings = 10; ///< sub-step halvings of one frame before giving up
   /// Linearised solves of one (sub-)step at most. The first is Baraff and Witkin's; Newton
   /// iterations on the implicit Euler equation follow while a contact surface cut the move short
-  /// or the equation's residual exceeds `iteration_tolerance` of the supports' force. With 1 the
+  /// or the equation's residual exceeds `iteration_tolerance` of the supports' force at the
+  /// last frame. With 1 the
   /// error of each frame's single solve is left in the state, and on a soft, near-incompressible
   /// ligament driven at its footprint it builds up over frames (the HRA MCL's elements beside the
   /// femoral footprint squeezed to J = 0.1 and 2.8 kN on the femur, where the quasi-static sweep
@@ -58,6 +59,9 @@ struct FrameReport {
   int linear_iterations = 0;
   int factorizations = 0;
   int projected_elements = 0;
+  /// Whether each sub-step's implicit Euler equation held to iteration_tolerance when it ended
+  /// (false only where max_iterations solves ran out first).
+  bool equation_met = true;
   double wall_s = 0.0;
 };
 
@@ -96,6 +100,8 @@ public:
 private:
   /// One implicit Euler step of length h to load factor t; false on failure.
   bool step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t, FrameReport& report);
+  /// The norm of the body's forces on the prescribed DOFs at x, N (0 if an element is inverted).
+  double support_force(const Eigen::VectorXd& x) const;
   /// Whether the implicit Euler equation of a step holds at x (with velocity v, from
   /// start_velocity; the body's gradient at x in m_end_gradient) to iteration_tolerance; true
   /// without iterations to do.
@@ -114,6 +120,10 @@ private:
   double m_end_energy = 0.0;
   Eigen::VectorXd m_end_gradient;
   double m_force_floor = 0.0;
+  /// The supports' force (norm over the prescribed DOFs) at the start or the last accepted
+  /// frame: the scale of converged()'s tolerance, N.
+  double m_support_force = 0.0;
+  bool m_step_met = true; ///< the last step's equation held to iteration_tolerance
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;
 };

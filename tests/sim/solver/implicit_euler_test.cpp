@@ -108,3 +108,30 @@ TEST(ImplicitEuler, PrescribedRigidMotionIsFollowed)
         (x.segment<3>(3 * node) - motion.apply(cube.mesh.V.row(node).transpose(), 1.0)).norm(),
         1e-12);
 }
+
+TEST(ImplicitEuler, AFrameWhoseSolvesRanOutBeforeItsEquationHeldIsFlagged)
+{
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  const auto frames_met = [&](int max_iterations, double tolerance) {
+    DynamicsSettings settings;
+    settings.time_step_s = 1e-2;
+    settings.frames = 10;
+    settings.ramp_frames = 10;
+    settings.linear_solver = LinearSolverKind::direct;
+    settings.max_iterations = max_iterations;
+    settings.iteration_tolerance = tolerance;
+    ImplicitEuler solver(body, cube.conditions, settings);
+    Eigen::VectorXd x = body.rest_positions();
+    int met = 0;
+    const DynamicResult result =
+        solver.run(x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+          met += frame.equation_met ? 1 : 0;
+        });
+    EXPECT_TRUE(result.completed) << result.failure;
+    return met;
+  };
+  EXPECT_EQ(frames_met(8, 0.03), 10);
+  // Two solves cannot bring the residual of a 20 % stretch to 1e-13 of the supports' force.
+  EXPECT_EQ(frames_met(2, 1e-13), 0);
+}
