@@ -125,9 +125,8 @@ TEST(ImplicitEuler, AFrameWhoseSolvesRanOutBeforeItsEquationHeldIsFlagged)
     Eigen::VectorXd x = body.rest_positions();
     int met = 0;
     const DynamicResult result =
-        solver.run(x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
-          met += frame.equation_met ? 1 : 0;
-        });
+        solver.run(x, [&](const FrameReport& frame, const Eigen::VectorXd&,
+                          const Eigen::VectorXd&) { met += frame.equation_met ? 1 : 0; });
     EXPECT_TRUE(result.completed) << result.failure;
     return met;
   };
