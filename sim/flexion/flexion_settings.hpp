@@ -82,7 +82,7 @@ struct InteractiveSettings {
   /// Linear solves per frame at most (DynamicsSettings::max_iterations): Newton goes on while a
   /// frame's implicit Euler equation is off by more than `iteration_tolerance` of the supports'
   /// force. 1: the paper's one solve per frame.
-  int max_iterations = 8;
+  int max_iterations = 12;
   double iteration_tolerance = 0.03;
 };
 
