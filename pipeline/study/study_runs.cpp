@@ -64,11 +64,12 @@ FlexionFigures sweep_ligament(const sim::LigamentModel& ligament, const sim::Kne
   double measuring_s = 0.0;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
       body, conditions, settings,
-      [&](const sim::AngleResult& angle, const Eigen::VectorXd& x) {
+      [&](const sim::AngleResult& angle, const sim::HyperelasticBody& swept,
+          const Eigen::VectorXd& x) {
         const auto measuring = std::chrono::steady_clock::now();
         std::vector<double> stretch(volumes.size());
-        for (Eigen::Index e = 0; e < body.element_count(); ++e)
-          stretch[static_cast<std::size_t>(e)] = body.measures(x, e).fiber_stretch;
+        for (Eigen::Index e = 0; e < swept.element_count(); ++e)
+          stretch[static_cast<std::size_t>(e)] = swept.measures(x, e).fiber_stretch;
         AngleFigures row;
         row.angle_deg = angle.angle_deg;
         row.strain_energy_mj = angle.strain_energy_mj;

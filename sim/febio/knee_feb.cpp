@@ -97,6 +97,10 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
     }
   }
 
+  if (!overlaps.empty() && settings.contact.reshape_overlap)
+    warnings.push_back("[contact] initial_overlap = \"reshape\" is not in this file: FEBio "
+                       "pushes the ligament out of the bones as a deformation of the segmented "
+                       "shape, whose strain stays in its answers (ligsim's \"deform\")");
   const MaterialParameters& m = settings.material;
   std::vector<std::string>& notes = problem.notes;
   notes.push_back("Written by `ligsim export febio` from the knee model in " +

@@ -139,6 +139,13 @@ void read_contact(TomlTable& table, ContactConfig& contact)
         table.fail_at("bones",
                       "expected \"femur\", \"tibia\" and/or \"fibula\", got \"" + bone + "\"");
   }
+  if (table.has("initial_overlap")) {
+    const std::string overlap = table.text("initial_overlap", "");
+    if (overlap != "deform" && overlap != "reshape")
+      table.fail_at("initial_overlap",
+                    "expected \"deform\" or \"reshape\", got \"" + overlap + "\"");
+    contact.reshape_overlap = overlap == "reshape";
+  }
   table.reject_unknown_keys();
 }
 

@@ -43,8 +43,13 @@ nlohmann::json OverlapReport::to_json() const
                  {"max_node_move_mm", max_node_move_mm},
                  {"mean_move_of_nodes_inside_mm", mean_surface_move_mm},
                  {"newton_iterations", newton_iterations},
-                 {"method", "bones held at rest and grown from shrunk back to their surfaces "
-                            "while the ligament settles (contact barrier)"}});
+                 {"method", reshaped ? "bones held at rest and grown from shrunk back to their "
+                                       "surfaces while the ligament without in-situ strain "
+                                       "settles (contact barrier); the pushed shape is the "
+                                       "stress-free rest shape"
+                                     : "bones held at rest and grown from shrunk back to their "
+                                       "surfaces while the ligament settles (contact barrier)"},
+                 {"reshaped", reshaped}});
   return json;
 }
 
@@ -94,6 +99,26 @@ OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
     report.mean_surface_move_mm += (x.segment<3>(3 * n) - start.segment<3>(3 * n)).norm();
   report.mean_surface_move_mm /= static_cast<double>(inside.size());
   return report;
+}
+
+HyperelasticBody with_unit_fibers(const HyperelasticBody& body, const MaterialParameters& material)
+{
+  FiberField unit(body.element_count(), 3);
+  for (Eigen::Index e = 0; e < body.element_count(); ++e)
+    unit.row(e) = body.fiber(e).stableNormalized().transpose(); // zero without fibers
+  return HyperelasticBody(body.mesh(), material, std::move(unit));
+}
+
+HyperelasticBody with_rest_shape(const HyperelasticBody& body, const MaterialParameters& material,
+                                 const Eigen::VectorXd& x)
+{
+  TetMesh mesh = body.mesh();
+  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n)
+    mesh.V.row(n) = x.segment<3>(3 * n).transpose();
+  FiberField fibers(body.element_count(), 3);
+  for (Eigen::Index e = 0; e < body.element_count(); ++e)
+    fibers.row(e) = body.fiber(e).transpose();
+  return HyperelasticBody(std::move(mesh), material, std::move(fibers));
 }
 
 } // namespace ligsim::sim

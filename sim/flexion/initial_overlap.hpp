@@ -22,6 +22,7 @@ struct OverlapReport {
   std::vector<KneeContact::Gaps> before; ///< per bone, at the segmented shape
   std::vector<KneeContact::Gaps> after;  ///< per bone, after the push (empty if none was needed)
   bool pushed = false;
+  bool reshaped = false; ///< the pushed shape became the rest shape (not a deformation)
   std::vector<double> start_offsets_mm; ///< how far each bone was shrunk to start
   double max_node_move_mm = 0.0;        ///< largest displacement of a node by the push
   double mean_surface_move_mm = 0.0;    ///< mean displacement of the nodes that started inside
@@ -37,5 +38,15 @@ OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
                                       const BoundaryConditions& conditions,
                                       const KneeContact& contact, const NewtonSettings& newton,
                                       Eigen::VectorXd& x);
+
+/// `body` with unit fibers: its material without the in-situ pre-stretch the fibers' length
+/// carries (prestretched_fibers).
+HyperelasticBody with_unit_fibers(const HyperelasticBody& body, const MaterialParameters& material);
+
+/// `body` (its material, fibers and their pre-stretch) at rest in the shape `x` (flat, mm): the
+/// push read as a correction of the segmented shape. The fibers keep their directions (the push
+/// moves nodes by a fraction of a millimetre).
+HyperelasticBody with_rest_shape(const HyperelasticBody& body, const MaterialParameters& material,
+                                 const Eigen::VectorXd& x);
 
 } // namespace ligsim::sim

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace ligsim::sim {
 
@@ -103,7 +104,7 @@ SweepResult quasi_static_sweep(Measuring& measuring, const FlexionSettings& sett
         measure(measuring, step.load_factor, state, residual, angle);
         sweep.angles.push_back(angle);
         if (on_angle)
-          on_angle(angle, state);
+          on_angle(angle, body, state);
         progress.advance();
       });
   progress.finish();
@@ -157,7 +158,7 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
       angle.angle_deg = angles[next];
       sweep.angles.push_back(angle);
       if (on_angle)
-        on_angle(angle, state);
+        on_angle(angle, body, state);
       ++next;
     }
   };
@@ -320,9 +321,19 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   Eigen::VectorXd x = body.rest_positions();
   const double unrelaxed = body.energy(x).energy;
   OverlapReport overlap;
+  std::optional<HyperelasticBody> reshaped;
   if (contact && settings.contact.enabled.value_or(true)) {
     try {
-      overlap = resolve_initial_overlap(body, conditions, *contact, settings.newton, x);
+      if (settings.contact.reshape_overlap) {
+        // Pushed without the in-situ strain, so the new rest shape holds no stress.
+        const HyperelasticBody unstretched = with_unit_fibers(body, settings.material);
+        overlap = resolve_initial_overlap(unstretched, conditions, *contact, settings.newton, x);
+        if (overlap.pushed)
+          reshaped.emplace(with_rest_shape(body, settings.material, x));
+        overlap.reshaped = overlap.pushed;
+      } else {
+        overlap = resolve_initial_overlap(body, conditions, *contact, settings.newton, x);
+      }
     } catch (const SolverError& e) {
       SweepResult failed;
       failed.failure = e.what();
@@ -332,8 +343,9 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   } else if (contact) {
     overlap.before = contact->gaps(x, 0.0);
   }
-  const RegionalMean regions = element_regions(body, settings.ligament.strain_region_radius_mm);
-  Measuring measuring{body,
+  const HyperelasticBody& swept = reshaped ? *reshaped : body;
+  const RegionalMean regions = element_regions(swept, settings.ligament.strain_region_radius_mm);
+  Measuring measuring{swept,
                       conditions,
                       contact,
                       contact && settings.contact.enabled.value_or(true),

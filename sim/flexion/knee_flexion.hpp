@@ -116,8 +116,10 @@ struct SweepResult {
   double frames_per_second = 0.0; ///< frames over the time of the frames alone
 };
 
-/// Called for each angle reached, with the positions (flat, mm).
-using AngleCallback = std::function<void(const AngleResult&, const Eigen::VectorXd& x)>;
+/// Called for each angle reached, with the body swept (the given one, or the one whose rest shape
+/// is the reshaped overlap push: ContactConfig::reshape_overlap) and the positions (flat, mm).
+using AngleCallback =
+    std::function<void(const AngleResult&, const HyperelasticBody& body, const Eigen::VectorXd& x)>;
 
 /// Sweeps `steps` (default: the angles of `settings`, load factor = angle / last angle) in
 /// `conditions`, with ligament-bone contact when `contact` is given and settings.contact does not

@@ -150,14 +150,14 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
                    {"contact", contact.figures()}};
     sweep.result = run_flexion_sweep(
         body, conditions, sweep.settings,
-        [&](const AngleResult& angle, const Eigen::VectorXd& x) {
+        [&](const AngleResult& angle, const HyperelasticBody& swept, const Eigen::VectorXd& x) {
           for (const std::string& warning : plausibility_warnings(angle, plausibility)) {
             log_info(fmt::format("warning at {} deg: {}{}", angle_label(angle.angle_deg),
                                  ligaments.size() > 1 ? ligament.name + ": " : "", warning));
             sweep.warnings.push_back({{"angle_deg", angle.angle_deg}, {"warning", warning}});
           }
           if (on_angle)
-            on_angle(l, body, angle, x);
+            on_angle(l, swept, angle, x);
         },
         &contact, &steps, centerline ? &*centerline : nullptr);
     sweeps.push_back(std::move(sweep));

@@ -331,12 +331,12 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
     const double last = settings.angles_deg.back();
     const SweepResult sweep = run_flexion_sweep(
         body, conditions, settings,
-        [&](const AngleResult& angle, const Eigen::VectorXd& x) {
-          output.write_angle(angle, x);
+        [&](const AngleResult& angle, const HyperelasticBody& swept, const Eigen::VectorXd& x) {
+          output.write_angle(0, swept, angle, x);
           if (quasi_static) {
             const double t = last > 0.0 ? angle.angle_deg / last : 0.0;
             worst_residual =
-                std::max(worst_residual, equilibrium_residual(body, knee, contact.get(), t, x));
+                std::max(worst_residual, equilibrium_residual(swept, knee, contact.get(), t, x));
             residual_measured = true;
           }
         },

@@ -63,9 +63,9 @@ Sweep sweep(const KneeModel& model, const BoundaryConditions& conditions,
   const HyperelasticBody body(model.mesh, settings.material,
                               prestretched_fibers(model, settings.in_situ_strain));
   Sweep run;
-  run.result = run_flexion_sweep(
-      body, conditions, settings,
-      [&](const AngleResult&, const Eigen::VectorXd& x) { run.states.push_back(x); });
+  run.result = run_flexion_sweep(body, conditions, settings,
+                                 [&](const AngleResult&, const HyperelasticBody&,
+                                     const Eigen::VectorXd& x) { run.states.push_back(x); });
   return run;
 }
 

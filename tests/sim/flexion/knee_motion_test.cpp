@@ -204,6 +204,49 @@ TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
   EXPECT_EQ(clear, body.rest_positions());
 }
 
+TEST(InitialOverlap, AReshapingPushLeavesNoStrainBehind)
+{
+  ligsim::Progress::set_quiet(true);
+  KneeModel model = bar_knee();
+  model.tibia = box({-20.0, -20.0, 6.0}, {0.4, 24.0, 14.0}); // 0.4 mm into the bar
+  const FlexionAxis axis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()};
+  const BoundaryConditions conditions = knee_conditions(model, axis, 0.0);
+  const fs::path cache = fs::temp_directory_path() / "ligsim_reshaping_push_cache";
+  fs::remove_all(cache);
+  const auto at_rest = [&](bool reshape) {
+    FlexionSettings settings;
+    settings.angles_deg = {0.0};
+    settings.in_situ_strain = 0.0;
+    settings.contact.bones = {"tibia"};
+    settings.contact.reshape_overlap = reshape;
+    const HyperelasticBody body(model.mesh, settings.material,
+                                prestretched_fibers(model, settings.in_situ_strain));
+    const KneeContact contact(model, conditions, settings.contact, cache);
+    Eigen::VectorXd rest_of_swept;
+    const SweepResult sweep = run_flexion_sweep(
+        body, conditions, settings,
+        [&](const AngleResult&, const HyperelasticBody& swept, const Eigen::VectorXd&) {
+          rest_of_swept = swept.rest_positions();
+        },
+        &contact);
+    EXPECT_TRUE(sweep.success) << sweep.failure;
+    EXPECT_TRUE(sweep.overlap.pushed);
+    EXPECT_EQ(sweep.overlap.reshaped, reshape);
+    EXPECT_EQ(rest_of_swept.isApprox(body.rest_positions()), !reshape);
+    return sweep.angles.front();
+  };
+  // Deformed by the push, the bar is strained where it was pushed.
+  const AngleResult deformed = at_rest(false);
+  EXPECT_GT(deformed.strain_energy_mj, 1e-2);
+  EXPECT_GT(deformed.max_fiber_stretch, 1.001);
+  // Reshaped, the pushed bar is its own rest shape: without in-situ strain, what is left is the
+  // barrier's push on the nodes still within its activation distance of the bone (deformed:
+  // 18.7 mJ and 2.1 %; reshaped: 0.05 mJ and 0.13 %).
+  const AngleResult reshaped = at_rest(true);
+  EXPECT_LT(reshaped.strain_energy_mj, 0.01 * deformed.strain_energy_mj);
+  EXPECT_LT(reshaped.max_fiber_stretch - 1.0, 0.1 * (deformed.max_fiber_stretch - 1.0));
+}
+
 TEST(Plausibility, ABadAxisIsSaidOutLoud)
 {
   ligsim::Progress::set_quiet(true);
@@ -220,7 +263,7 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
     std::vector<std::string> warnings;
     const SweepResult sweep = run_flexion_sweep(
         body, knee_conditions(model, axis, 30.0), settings,
-        [&](const AngleResult& angle, const Eigen::VectorXd&) {
+        [&](const AngleResult& angle, const HyperelasticBody&, const Eigen::VectorXd&) {
           for (const std::string& w : plausibility_warnings(angle, context))
             warnings.push_back(w);
         },
