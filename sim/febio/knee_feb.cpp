@@ -98,9 +98,11 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   }
 
   if (!overlaps.empty() && settings.contact.reshape_overlap)
-    warnings.push_back("[contact] initial_overlap = \"reshape\" is not in this file: FEBio "
-                       "pushes the ligament out of the bones as a deformation of the segmented "
-                       "shape, whose strain stays in its answers (ligsim's \"deform\")");
+    warnings.push_back("[contact] initial_overlap = \"reshape\" asks for the ligament's shape "
+                       "pushed out of the bones (with_overlap_reshaped), but this model overlaps "
+                       "them: FEBio pushes it out as a deformation, whose strain stays in its "
+                       "answers (ligsim's \"deform\")");
+
   const MaterialParameters& m = settings.material;
   std::vector<std::string>& notes = problem.notes;
   notes.push_back("Written by `ligsim export febio` from the knee model in " +
@@ -148,7 +150,13 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
         number_text(problem.contact_settings.penalty)));
     notes.push_back(
         overlaps.empty()
-            ? "The ligament does not overlap the bones at rest."
+            ? std::string(settings.contact.reshape_overlap
+                              ? "The ligament does not overlap the bones at rest: with [contact] "
+                                "initial_overlap = \"reshape\", where the segmented ligament "
+                                "overlapped a bone its nodes here are the rest shape ligsim "
+                                "pushed out of the bones (without the in-situ strain), so neither "
+                                "program repeats the push."
+                              : "The ligament does not overlap the bones at rest.")
             : "The ligament overlaps " + joined_text(overlaps) +
                   " at rest, as segmented. ligsim pushes it out before the knee moves, growing "
                   "the bones from shrunk back to their surfaces; here the same happens during "

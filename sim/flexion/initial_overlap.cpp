@@ -101,6 +101,36 @@ OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
   return report;
 }
 
+OverlapReport reshape_initial_overlap(const HyperelasticBody& body,
+                                      const MaterialParameters& material,
+                                      const BoundaryConditions& conditions,
+                                      const KneeContact& contact, const NewtonSettings& newton,
+                                      Eigen::VectorXd& x)
+{
+  OverlapReport report =
+      resolve_initial_overlap(with_unit_fibers(body, material), conditions, contact, newton, x);
+  report.reshaped = report.pushed;
+  return report;
+}
+
+KneeModel with_overlap_reshaped(const KneeModel& model, const FlexionSettings& settings,
+                                const BoundaryConditions& conditions, const KneeContact& contact,
+                                OverlapReport* report)
+{
+  // The push leaves the in-situ strain out, so the model's unit fibers serve.
+  const HyperelasticBody body(model.mesh, settings.material, model.fiber_directions);
+  Eigen::VectorXd x = body.rest_positions();
+  const OverlapReport pushed =
+      reshape_initial_overlap(body, settings.material, conditions, contact, settings.newton, x);
+  if (report)
+    *report = pushed;
+  KneeModel reshaped = model;
+  if (pushed.pushed)
+    for (Eigen::Index n = 0; n < reshaped.mesh.V.rows(); ++n)
+      reshaped.mesh.V.row(n) = x.segment<3>(3 * n).transpose();
+  return reshaped;
+}
+
 HyperelasticBody with_unit_fibers(const HyperelasticBody& body, const MaterialParameters& material)
 {
   FiberField unit(body.element_count(), 3);

@@ -7,6 +7,7 @@
 
 #include "sim/flexion/flexion_settings.hpp"
 #include "sim/flexion/knee_contact.hpp"
+#include "sim/flexion/knee_model.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 
@@ -38,6 +39,23 @@ OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
                                       const BoundaryConditions& conditions,
                                       const KneeContact& contact, const NewtonSettings& newton,
                                       Eigen::VectorXd& x);
+
+/// The push read as a correction of the segmented shape (ContactConfig::reshape_overlap): the
+/// pre-stretched `body` is pushed without its in-situ strain, so that the pushed shape `x` can
+/// become its stress-free rest shape (with_rest_shape). `reshaped` is set when it was pushed.
+OverlapReport reshape_initial_overlap(const HyperelasticBody& body,
+                                      const MaterialParameters& material,
+                                      const BoundaryConditions& conditions,
+                                      const KneeContact& contact, const NewtonSettings& newton,
+                                      Eigen::VectorXd& x);
+
+/// `model` with its ligament's rest shape pushed out of the bones as `ligsim flexion` reshapes it,
+/// for programs that take the model's shape as it is (the FEBio export): fibers and footprints
+/// unchanged; `model` itself when no free node is inside a bone. `report` (if given) says what
+/// the push did.
+KneeModel with_overlap_reshaped(const KneeModel& model, const FlexionSettings& settings,
+                                const BoundaryConditions& conditions, const KneeContact& contact,
+                                OverlapReport* report = nullptr);
 
 /// `body` with unit fibers: its material without the in-situ pre-stretch the fibers' length
 /// carries (prestretched_fibers).

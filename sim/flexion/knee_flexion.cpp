@@ -325,12 +325,10 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   if (contact && settings.contact.enabled.value_or(true)) {
     try {
       if (settings.contact.reshape_overlap) {
-        // Pushed without the in-situ strain, so the new rest shape holds no stress.
-        const HyperelasticBody unstretched = with_unit_fibers(body, settings.material);
-        overlap = resolve_initial_overlap(unstretched, conditions, *contact, settings.newton, x);
-        if (overlap.pushed)
+        overlap = reshape_initial_overlap(body, settings.material, conditions, *contact,
+                                          settings.newton, x);
+        if (overlap.reshaped)
           reshaped.emplace(with_rest_shape(body, settings.material, x));
-        overlap.reshaped = overlap.pushed;
       } else {
         overlap = resolve_initial_overlap(body, conditions, *contact, settings.newton, x);
       }

@@ -3,9 +3,11 @@
 /// contact the settings ask for, and the problems it refuses.
 
 #include "common/error.hpp"
+#include "common/progress.hpp"
 #include "sim/febio/feb_writer.hpp"
 #include "sim/febio/knee_feb.hpp"
 #include "sim/flexion/femur_poses.hpp"
+#include "sim/flexion/knee_flexion.hpp"
 #include "tests/sim/febio/bar_knee.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include <vtkXMLUtilities.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -308,6 +311,61 @@ TEST(FebWriter, OverlappedBoneStartsShrunkAndGrowsOverTheFirstStep)
   FebProblem bad = problem;
   bad.bones[feb_tibia].contact_start_offset_mm = -1.0;
   EXPECT_THROW(feb_text(bad), InputError);
+}
+
+TEST(FebWriter, AReshapedOverlapIsWrittenAsTheRestShapeTheSweepUses)
+{
+  ligsim::Progress::set_quiet(true);
+  FlexionSettings settings = bar_settings(0.029);
+  settings.angles_deg = {0.0};
+  settings.contact.enabled = true;
+  settings.contact.barrier.d_hat_mm = 0.1;
+  settings.contact.reshape_overlap = true;
+  const KneeModel model = overlapping_bar_knee(0.3);
+  const BoundaryConditions conditions = knee_conditions(model, bar_axis(), 60.0);
+  const std::filesystem::path cache =
+      std::filesystem::temp_directory_path() / "ligsim_feb_reshape_cache";
+  std::filesystem::remove_all(cache);
+  const KneeContact contact(model, conditions, settings.contact, cache);
+
+  OverlapReport report;
+  const KneeModel reshaped = with_overlap_reshaped(model, settings, conditions, contact, &report);
+  ASSERT_TRUE(report.reshaped);
+  EXPECT_GT(report.max_node_move_mm, 0.3); // out of the box, past the barrier's gap
+  EXPECT_FALSE(reshaped.mesh.V.isApprox(model.mesh.V));
+
+  // The sweep's own rest shape, reshaped by the same push.
+  Eigen::VectorXd swept_rest;
+  const HyperelasticBody body(model.mesh, settings.material,
+                              prestretched_fibers(model, settings.in_situ_strain));
+  const SweepResult sweep = run_flexion_sweep(
+      body, conditions, settings,
+      [&](const AngleResult&, const HyperelasticBody& swept, const Eigen::VectorXd&) {
+        swept_rest = swept.rest_positions();
+      },
+      &contact);
+  ASSERT_TRUE(sweep.success) << sweep.failure;
+  ASSERT_EQ(swept_rest.size(), 3 * reshaped.mesh.V.rows());
+  for (Eigen::Index n = 0; n < reshaped.mesh.V.rows(); ++n)
+    EXPECT_LT((swept_rest.segment<3>(3 * n) - reshaped.mesh.V.row(n).transpose()).norm(), 1e-9)
+        << "node " << n;
+
+  // Written from that shape, FEBio starts outside the bones: no shrunk bone, no warning.
+  std::vector<std::string> warnings;
+  const FebProblem problem =
+      knee_feb_problem(reshaped, settings, conditions, angle_steps(settings.angles_deg),
+                       bar_axis().point_mm, warnings);
+  EXPECT_EQ(problem.ligament.V, reshaped.mesh.V);
+  EXPECT_EQ(problem.bones[feb_tibia].contact_start_offset_mm, 0.0);
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_NE(feb_text(problem).find("rest shape ligsim pushed out of the bones"), std::string::npos);
+
+  // Given the segmented shape with reshape asked for, it says that FEBio deforms it instead.
+  const FebProblem unreshaped = knee_feb_problem(
+      model, settings, conditions, angle_steps(settings.angles_deg), bar_axis().point_mm, warnings);
+  EXPECT_GT(unreshaped.bones[feb_tibia].contact_start_offset_mm, 0.3);
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_NE(warnings.front().find("overlaps them"), std::string::npos);
 }
 
 TEST(FebWriter, PaperConventionIsWrittenWithAWarning)

@@ -160,6 +160,28 @@ TEST(FebioRun, OverlapIsPushedOutInBothAndTheForcesAgree)
   }
 }
 
+TEST(FebioRun, AReshapedOverlapStartsBothFromThePushedShape)
+{
+  REQUIRE_FEBIO();
+  // Reshaped, ligsim's rest shape is the bar pushed out of the tibia, and the .feb holds that
+  // shape: neither program pushes during the sweep, and they agree as on a bar clear of bones.
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  settings.contact.barrier.d_hat_mm = 0.01;
+  settings.contact.reshape_overlap = true;
+  const CrossCheck check = cross_check(settings, "reshape", overlapping_bar_knee(0.3));
+  ASSERT_EQ(check.rows.size(), 3u);
+  for (std::size_t k = 0; k < check.rows.size(); ++k) {
+    const ComparisonRow& r = check.rows[k];
+    EXPECT_NEAR(r.ours_femur_force_n, r.febio_femur_force_n, 0.05 * r.febio_femur_force_n)
+        << r.angle_deg << " deg";
+    EXPECT_NEAR(r.ours_energy_mj, r.febio_energy_mj, 0.05 * r.febio_energy_mj)
+        << r.angle_deg << " deg";
+    for (const BoneContact& bone : check.febio_contact[k])
+      EXPECT_LT(bone.penetration_mm, 0.03) << "FEBio left the bar in the " << bone.bone;
+  }
+}
+
 TEST(FebioRun, FebiosFailureIsAnErrorWithItsMessage)
 {
   REQUIRE_FEBIO();
