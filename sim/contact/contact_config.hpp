@@ -18,9 +18,10 @@ struct ContactConfig {
   /// flexion: which bones ("femur", "tibia", "fibula"); empty: every bone the model has
   std::vector<std::string> bones;
   /// flexion: the push of the ligament out of the bones it overlaps as segmented corrects its
-  /// shape (the pushed shape, found without the in-situ strain, is the stress-free rest shape)
-  /// instead of deforming it (false: its strain stays in every answer).
-  bool reshape_overlap = false;
+  /// shape (the pushed shape, found without the in-situ strain, is the stress-free rest shape:
+  /// a segmentation's overlap is an error of its shape, not a strain of the tissue) instead of
+  /// deforming it (false: its strain stays in every answer).
+  bool reshape_overlap = true;
 };
 
 /// Throws InputError naming the first value that cannot work (d_hat, stiffness, voxel, band

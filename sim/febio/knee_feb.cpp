@@ -87,8 +87,10 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   // The same start as ligsim's pre-push (sim/flexion/initial_overlap): each bone the ligament
   // overlaps as segmented starts shrunk by the deepest overlap plus half of d_hat.
   std::vector<std::string> overlaps;
+  double deepest_of_all = 0.0;
   for (FebRigidBody& bone : problem.bones) {
     const double deepest = bone.contact ? deepest_overlap_mm(model.mesh, bone) : 0.0;
+    deepest_of_all = std::max(deepest_of_all, deepest);
     if (deepest > 0.0) {
       bone.contact_start_offset_mm = deepest + 0.5 * settings.contact.barrier.d_hat_mm;
       overlaps.push_back(fmt::format("the {} by up to {:.3g} mm (its contact offset starts at "
@@ -98,10 +100,13 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   }
 
   if (!overlaps.empty() && settings.contact.reshape_overlap)
-    warnings.push_back("[contact] initial_overlap = \"reshape\" asks for the ligament's shape "
-                       "pushed out of the bones (with_overlap_reshaped), but this model overlaps "
-                       "them: FEBio pushes it out as a deformation, whose strain stays in its "
-                       "answers (ligsim's \"deform\")");
+    warnings.push_back(fmt::format(
+        "[contact] initial_overlap = \"reshape\": the ligament's shape here still lies up to "
+        "{:.3g} mm inside a bone by its triangles (after ligsim's push, which keeps nodes "
+        "outside the bone's distance grid, a few thousandths of a millimetre; more: the shape "
+        "was not pushed, see with_overlap_reshaped), and FEBio pushes that out as a deformation "
+        "during step 1",
+        deepest_of_all));
 
   const MaterialParameters& m = settings.material;
   std::vector<std::string>& notes = problem.notes;
