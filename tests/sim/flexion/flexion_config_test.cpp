@@ -65,8 +65,10 @@ TEST(FlexionConfig, ReadsContact)
 {
   FlexionSettings settings;
   EXPECT_FALSE(settings.contact.enabled.has_value()); // unset: on, the model has both bones
+  EXPECT_TRUE(settings.contact.reshape_overlap);      // unset: "reshape"
   parse_flexion_config(R"(
 [contact]
+initial_overlap = "deform"
 enabled = false
 d_hat_mm = 0.5
 stiffness_mpa_per_mm = 20
@@ -80,10 +82,12 @@ bones = ["tibia"]
   EXPECT_EQ(settings.contact.grid.voxel_mm, 0.25);
   EXPECT_EQ(settings.contact.grid.band_mm, 1.0); // the larger of 1 mm and d_hat + 2 voxels
   EXPECT_EQ(settings.contact.bones, std::vector<std::string>{"tibia"});
+  EXPECT_FALSE(settings.contact.reshape_overlap);
   EXPECT_NO_THROW(validate(settings));
 
   for (const char* bad : {"[contact]\nbones = [\"patella\"]\n", "[contact]\nd_hat_mm = -1\n",
-                          "[contact]\nband_mm = 0.1\n", "[contact]\nd_hat = 0.3\n"}) {
+                          "[contact]\nband_mm = 0.1\n", "[contact]\nd_hat = 0.3\n",
+                          "[contact]\ninitial_overlap = \"move\"\n"}) {
     FlexionSettings other;
     EXPECT_THROW(
         {
