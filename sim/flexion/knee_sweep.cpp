@@ -139,7 +139,7 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
       centerline.emplace(model.mesh, model.centerline);
     sweep.footprints = footprints(model, motion.axis.axis);
     const PlausibilityContext plausibility{sweep.settings.ligament, sweep.footprints,
-                                           sweep.settings.in_situ_strain, 0.0};
+                                           sweep.settings.in_situ_strain};
     // Built with contact off as well: it measures how deep the ligament goes into the bones.
     const KneeContact contact(model, conditions, sweep.settings.contact, contact_cache);
     sweep.setup = {{"nodes", body.node_count()},

@@ -47,7 +47,6 @@ struct PlausibilityContext {
   LigamentSettings ligament;
   std::vector<Footprint> footprints;
   double in_situ_strain = 0.0;
-  double overlap_push_mm = 0.0; ///< largest node move of the initial push (0: none)
 };
 
 /// The warnings of one angle (empty: plausible by these checks), each one line.

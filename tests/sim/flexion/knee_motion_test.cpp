@@ -258,8 +258,8 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
                               prestretched_fibers(model, settings.in_situ_strain));
   const EmbeddedPolyline centerline(model.mesh, model.centerline);
   const auto warnings_of = [&](const FlexionAxis& axis) {
-    PlausibilityContext context{settings.ligament, footprints(model, axis), settings.in_situ_strain,
-                                0.0};
+    PlausibilityContext context{settings.ligament, footprints(model, axis),
+                                settings.in_situ_strain};
     std::vector<std::string> warnings;
     const SweepResult sweep = run_flexion_sweep(
         body, knee_conditions(model, axis, 30.0), settings,
@@ -282,6 +282,31 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
   EXPECT_NE(bad.front().find("the femoral footprint reaches"), std::string::npos);
   EXPECT_GT(bad_sweep.angles.back().failed_volume_fraction, 0.5);
   EXPECT_GT(bad_sweep.angles.back().length_change_pct, 50.0);
+}
+
+TEST(Plausibility, APeakThatNoRegionSharesIsCalledLocal)
+{
+  // A few elements past the failure strain: called a local peak only where the strain averaged
+  // over the measuring regions stays under it; the bar's axis is on its footprint, so nothing
+  // else is blamed.
+  const KneeModel model = bar_knee();
+  FlexionSettings settings;
+  const PlausibilityContext context{settings.ligament,
+                                    footprints(model, {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
+                                    settings.in_situ_strain};
+  AngleResult angle;
+  angle.failed_volume_fraction = 2e-4;
+  angle.max_fiber_stretch = 1.30;
+  angle.max_regional_fiber_stretch = 1.05;
+  const std::vector<std::string> local = plausibility_warnings(angle, context);
+  ASSERT_EQ(local.size(), 1U);
+  EXPECT_NE(local.front().find("likely causes: a local peak: averaged within 2 mm"),
+            std::string::npos)
+      << local.front();
+  angle.max_regional_fiber_stretch = 1.20; // past 17.1 % over 2 mm as well
+  const std::vector<std::string> broad = plausibility_warnings(angle, context);
+  ASSERT_EQ(broad.size(), 1U);
+  EXPECT_EQ(broad.front().find("local peak"), std::string::npos) << broad.front();
 }
 
 namespace {
