@@ -41,19 +41,13 @@ void run_export_febio(const ExportOptions& options)
       sim::knee_conditions(model, sim::femur_rigid_motion(motion));
   const sim::SweepSteps steps = sim::motion_steps(motion);
   std::vector<std::string> warnings;
-  sim::KneeModel exported = model;
-  if (settings.contact.reshape_overlap && settings.contact.enabled.value_or(true)) {
-    // The file holds the shape ligsim sweeps: the segmented one pushed out of the bones.
-    const sim::KneeContact contact(model, conditions, settings.contact,
-                                   settings.model_dir / "contact");
-    sim::OverlapReport report;
-    exported = sim::with_overlap_reshaped(model, settings, conditions, contact, &report);
-    if (report.reshaped)
-      log_info(fmt::format("export febio: the ligament's rest shape is pushed out of the bones "
-                           "([contact] initial_overlap = \"reshape\"): nodes moved by up to "
-                           "{:.3g} mm",
-                           report.max_node_move_mm));
-  }
+  sim::OverlapReport report;
+  const sim::KneeModel exported = sim::feb_start_model(model, settings, conditions, &report);
+  if (report.reshaped)
+    log_info(fmt::format("export febio: the ligament's rest shape is pushed out of the bones "
+                         "([contact] initial_overlap = \"reshape\"): nodes moved by up to "
+                         "{:.3g} mm",
+                         report.max_node_move_mm));
   const sim::FebProblem problem = sim::knee_feb_problem(
       exported, settings, conditions, steps, motion.axis.axis.point_mm, warnings, options.contact);
   for (const std::string& warning : warnings)

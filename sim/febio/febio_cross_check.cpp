@@ -20,16 +20,11 @@ CrossCheck cross_check_with_febio(const KneeModel& given, const FlexionSettings&
   const auto start = std::chrono::steady_clock::now();
   const BoundaryConditions conditions = knee_conditions(given, femur_rigid_motion(motion));
   const SweepSteps steps = motion_steps(motion);
-  const std::filesystem::path cache = settings.model_dir / "contact";
   // Reshaped, both programs start from the shape pushed out of the bones.
-  const KneeModel model =
-      settings.contact.reshape_overlap && settings.contact.enabled.value_or(true)
-          ? with_overlap_reshaped(given, settings, conditions,
-                                  KneeContact(given, conditions, settings.contact, cache))
-          : given;
+  const KneeModel model = feb_start_model(given, settings, conditions);
   const HyperelasticBody body(model.mesh, settings.material,
                               prestretched_fibers(model, settings.in_situ_strain));
-  const KneeContact contact(model, conditions, settings.contact, cache);
+  const KneeContact contact(model, conditions, settings.contact, settings.model_dir / "contact");
   const SweepResult sweep = run_flexion_sweep(body, conditions, settings, {}, &contact, &steps);
   check.ours_wall_s = seconds_since(start) + extra_wall_s;
   if (!sweep.success)

@@ -56,6 +56,15 @@ double deepest_overlap_mm(const TetMesh& ligament, const FebRigidBody& bone)
 
 } // namespace
 
+KneeModel feb_start_model(const KneeModel& model, const FlexionSettings& settings,
+                          const BoundaryConditions& conditions, OverlapReport* report)
+{
+  if (!settings.contact.reshape_overlap || !settings.contact.enabled.value_or(true))
+    return model;
+  const KneeContact contact(model, conditions, settings.contact, settings.model_dir / "contact");
+  return with_overlap_reshaped(model, settings, conditions, contact, report);
+}
+
 FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& settings,
                             const BoundaryConditions& conditions, const SweepSteps& steps,
                             const Eigen::Vector3d& center_mm, std::vector<std::string>& warnings,

@@ -17,6 +17,14 @@ namespace ligsim::sim {
 constexpr std::size_t feb_femur = 0;
 constexpr std::size_t feb_tibia = 1;
 
+/// `model` as a .feb file holds it: where the config reshapes the overlap with the bones
+/// (ContactConfig::reshape_overlap, contact on), the ligament pushed out of them as `ligsim
+/// flexion` pushes it (with_overlap_reshaped; the bones' distance grids cached in
+/// settings.model_dir/contact); `model` itself otherwise. `report` (if given) says what the push
+/// did.
+KneeModel feb_start_model(const KneeModel& model, const FlexionSettings& settings,
+                          const BoundaryConditions& conditions, OverlapReport* report = nullptr);
+
 /// The problem of sweeping `model` through `steps` with the femur's motion of `conditions`
 /// (knee_conditions): one step per angle, the femur's rotations taken about `center_mm` (a
 /// point of the flexion axis), the tibia fixed, contact with the bones settings.contact names

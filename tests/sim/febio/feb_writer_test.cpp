@@ -351,6 +351,13 @@ TEST(FebWriter, AReshapedOverlapIsWrittenAsTheRestShapeTheSweepUses)
     EXPECT_LT((swept_rest.segment<3>(3 * n) - reshaped.mesh.V.row(n).transpose()).norm(), 1e-9)
         << "node " << n;
 
+  // What the export and the cross-check write: that shape (with the config's contact cache).
+  FlexionSettings in_folder = settings;
+  in_folder.model_dir = cache;
+  EXPECT_EQ(feb_start_model(model, in_folder, conditions).mesh.V, reshaped.mesh.V);
+  in_folder.contact.reshape_overlap = false;
+  EXPECT_EQ(feb_start_model(model, in_folder, conditions).mesh.V, model.mesh.V);
+
   // Written from that shape, FEBio starts outside the bones: no shrunk bone, no warning.
   std::vector<std::string> warnings;
   const FebProblem problem =
