@@ -21,7 +21,10 @@ Eigen::Vector3d vector_of(const nlohmann::json& json, const std::string& where)
 
 nlohmann::json to_json(const KneeAnatomy& anatomy)
 {
-  nlohmann::json json = {{"side", anatomy.side}, {"frame_source", anatomy.frame_source}};
+  nlohmann::json json = {{"side", anatomy.side},
+                         {"side_source", anatomy.side_source},
+                         {"frame_source", anatomy.frame_source},
+                         {"not_found", anatomy.not_found}};
   if (anatomy.proximal)
     json["proximal"] = json_vector3(*anatomy.proximal);
   if (anatomy.posterior)
@@ -41,6 +44,8 @@ KneeAnatomy knee_anatomy_from_json(const nlohmann::json& json, const std::string
   try {
     anatomy.side = json.value("side", "");
     anatomy.frame_source = json.value("frame_source", "");
+    anatomy.side_source = json.value("side_source", "");
+    anatomy.not_found = json.value("not_found", std::vector<std::string>{});
     if (json.contains("proximal"))
       anatomy.proximal = vector_of(json["proximal"], where + ": proximal").normalized();
     if (json.contains("posterior"))

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace ligsim {
 
@@ -23,8 +24,12 @@ struct KneeAnatomy {
   std::optional<Eigen::Vector3d> proximal;  ///< unit, up the leg
   std::optional<Eigen::Vector3d> posterior; ///< unit
   std::string frame_source;                 ///< where the directions came from
-  /// By name: "medial_epicondyle", "lateral_epicondyle".
+  std::string side_source;                  ///< what told the side
+  /// By name: "medial_epicondyle", "lateral_epicondyle", "intercondylar_notch",
+  /// "tibial_plateau_centre", "medial_tibial_plateau", "lateral_tibial_plateau", "fibular_head".
   std::map<std::string, KneeLandmark> landmarks;
+  /// What could not be found, and why (one line each).
+  std::vector<std::string> not_found;
 
   /// +1 for a right knee, -1 for a left one, 0 when not known.
   int side_sign() const { return side == "right" ? 1 : side == "left" ? -1 : 0; }

@@ -1,11 +1,14 @@
 #include "pipeline/commands/commands.hpp"
 
+#include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/knee_anatomy.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/knee_build.hpp"
+#include "pipeline/stage_graph/knee_from_labels.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
@@ -137,10 +140,13 @@ void set_if(const std::string& value, std::string& target)
     target = value;
 }
 
-void apply_rule_flags(attachments::Rule& rule, const std::string& kind,
+/// Returns whether a flag set anything of the rule.
+bool apply_rule_flags(attachments::Rule& rule, const std::string& kind,
                       const std::vector<int>& indices, const std::string& array,
                       const std::string& end, const BuildOptions& o)
 {
+  const bool any = !kind.empty() || !indices.empty() || !array.empty() || !end.empty() ||
+                   !std::isnan(o.attach_distance) || !std::isnan(o.end_length);
   set_if(kind, rule.rule);
   if (!indices.empty())
     rule.indices = indices;
@@ -148,16 +154,19 @@ void apply_rule_flags(attachments::Rule& rule, const std::string& kind,
   set_if(end, rule.end);
   set_if(o.attach_distance, rule.distance_mm);
   set_if(o.end_length, rule.end_length_mm);
+  return any;
 }
 
 /// The stage flags over one ligament's config.
 void apply_stage_flags(const BuildOptions& o, BuildConfig& config)
 {
   config.strict = config.strict || o.strict;
-  apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
-                   o.femur_end, o);
-  apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
-                   o.tibia_end, o);
+  if (apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
+                       o.femur_end, o))
+    config.given.insert("attachments.femur");
+  if (apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
+                       o.tibia_end, o))
+    config.given.insert("attachments.tibia");
   set_if(o.voxel, config.voxelize.spacing_mm);
   set_if(o.alpha, config.centerline.alpha);
   if (!o.span.empty())
@@ -191,8 +200,25 @@ BuildConfig resolve_config(const BuildOptions& o)
   return config;
 }
 
+/// What the anatomy stage found, and what it could not, on stderr (anatomy.json has it all).
+void report_anatomy(const fs::path& dir)
+{
+  const KneeAnatomy anatomy = read_knee_anatomy(dir);
+  if (!anatomy.side.empty())
+    log_info(fmt::format("anatomy: a {} knee ({})", anatomy.side, anatomy.side_source));
+  std::vector<std::string> found;
+  for (const auto& [name, landmark] : anatomy.landmarks)
+    found.push_back(name);
+  if (!found.empty())
+    log_info(fmt::format("anatomy: landmarks {} ({})", fmt::join(found, ", "),
+                         (dir / knee_anatomy_file).string()));
+  for (const std::string& line : anatomy.not_found)
+    log_info("anatomy: not found: " + line);
+}
+
 /// A knee config: every ligament built in its own folder of `o.out`, the flags over each.
-void run_knee_build_job(const BuildOptions& o, const std::string& target)
+void run_knee_build_job(const BuildOptions& o, const std::string& target,
+                        const nlohmann::json& found_by_name = nullptr)
 {
   for (const auto& [flag, value] :
        {std::pair{"--surface", o.surface}, std::pair{"--femur", o.femur},
@@ -205,6 +231,7 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target)
   nlohmann::json label_report;
   pipeline::KneeConfig knee =
       pipeline::knee_surfaces_from_labels(pipeline::load_knee_config(o.config), out, label_report);
+  pipeline::add_anatomy_parts(knee);
   // Every input is read before a stage runs, so that bad input leaves nothing behind.
   nlohmann::json repairs = nlohmann::json::object();
   for (pipeline::LigamentConfig& ligament : knee.ligaments) {
@@ -234,15 +261,54 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target)
   summary.results()["bone_repair"] = bone_repair;
   if (!label_report.is_null())
     summary.results()["label_map"] = label_report;
+  if (!found_by_name.is_null())
+    summary.results()["found_by_name"] = found_by_name;
   pipeline::build_knee(knee, out, target, o.force, summary);
+  if (target == "model")
+    report_anatomy(out);
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));
+}
+
+/// A label map and nothing else: the knee its names describe, its config written as
+/// `out/knee.toml` and built as a knee config is.
+void run_labelled_knee_job(const BuildOptions& o, const std::string& target)
+{
+  for (const auto& [flag, value] :
+       {std::pair{"--surface", o.surface}, std::pair{"--femur", o.femur},
+        std::pair{"--tibia", o.tibia}, std::pair{"--femur-label", o.femur_label},
+        std::pair{"--tibia-label", o.tibia_label}})
+    if (!value.empty())
+      fail("{} with --labels and no --ligament-label: the whole knee is found by its label "
+           "names; give --ligament-label to build one ligament, or a knee config",
+           flag);
+  const fs::path out = o.out;
+  const pipeline::KneeFromLabels found = pipeline::knee_from_labels(o.labels, o.colour_table, out);
+  for (const nlohmann::json& label : found.labels)
+    log_info(fmt::format("label {} ({}): {}", label["label"].get<int>(),
+                         fmt::join(label["names"].get<std::vector<std::string>>(), ", "),
+                         label["taken_for"].get<std::string>()));
+  for (const std::string& note : found.notes)
+    log_info(note);
+  ensure_directory(out);
+  const fs::path config = out / "knee.toml";
+  write_text_atomically(config, found.config_text);
+  log_info(fmt::format("wrote {}: the knee config this build uses", config.string()));
+  BuildOptions knee = o;
+  knee.config = config.string();
+  knee.labels.clear();
+  knee.colour_table.clear();
+  run_knee_build_job(knee, target, {{"labels", found.labels}, {"notes", found.notes}});
 }
 
 void run_build_job(const BuildOptions& o, const std::string& target)
 {
   if (!o.config.empty() && pipeline::is_knee_config(o.config)) {
     run_knee_build_job(o, target);
+    return;
+  }
+  if (o.config.empty() && !o.labels.empty() && o.ligament_label.empty()) {
+    run_labelled_knee_job(o, target);
     return;
   }
   const fs::path out = o.out;
@@ -268,6 +334,14 @@ void run_build_job(const BuildOptions& o, const std::string& target)
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
     if (!label_report.is_null())
       label_report["wall_s"] = label_meter.wall_s(); // reading the map, surfaces, writing them
+    if (!config.ligament_part.empty()) {
+      config.anatomy.parts[config.ligament_part] = config.surface;
+      const std::string used = pipeline::apply_part_defaults(config);
+      if (!used.empty()) {
+        log_info(fmt::format("the ligament's label names the {}: {}", config.ligament_part, used));
+        label_report["ligament"]["defaults_by_name"] = used;
+      }
+    }
     pipeline::load_ligament(config, nullptr, &repairs);
     pipeline::load_bone(config.femur, &femur_repairs);
     pipeline::load_bone(config.tibia, &tibia_repairs);
@@ -304,6 +378,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
     clean_up();
     throw;
   }
+  report_anatomy(out);
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));
 }

@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
+#include "pipeline/stage_graph/ligament_defaults.hpp"
 
 namespace ligsim::pipeline {
 
@@ -132,7 +133,38 @@ BuildConfig load_build_config(const fs::path& file)
   read_attachment_sections(root, "", file, {"tibia"}, config);
   read_stage_sections(root, "", file, config);
   read_material_section(root, "", file, config);
+  if (root.contains("material"))
+    config.given.insert("material");
+  if (const toml::table* attachments = table_at(&root, "attachments"))
+    for (const char* bone : {"femur", "tibia"})
+      if (attachments->contains(bone))
+        config.given.insert(std::string("attachments.") + bone);
   return config;
+}
+
+std::string apply_part_defaults(BuildConfig& config)
+{
+  const auto defaults = ligament_defaults(config.ligament_part);
+  if (config.ligament_part.empty() || !defaults)
+    return "";
+  std::string used;
+  const auto note = [&](const std::string& what) { used += (used.empty() ? "" : "; ") + what; };
+  if (!config.given.count("material")) {
+    config.material = defaults->material;
+    note("material: " + defaults->material_source);
+  }
+  if (!config.given.count("attachments.femur")) {
+    config.femur_attachment = defaults->femur_footprint;
+    note("femoral footprint by the " + config.ligament_part + "'s name");
+  }
+  // A one-ligament build's distal bone is the tibia: only a tibial footprint's rule carries over.
+  if (!config.given.count("attachments.tibia") && defaults->distal_bone == "tibia") {
+    config.tibia_attachment = defaults->distal_footprint;
+    note("tibial footprint by the " + config.ligament_part + "'s name");
+  }
+  if (!used.empty())
+    note("footprints: " + defaults->footprint_source);
+  return used;
 }
 
 namespace {
@@ -174,7 +206,10 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
   const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
   if (stage == "anatomy") {
     nlohmann::json anatomy = as_json(c.anatomy, [](auto& p, auto&& v) { visit_anatomy(p, v); });
-    anatomy["label_map_frame"] = !c.labels.empty();
+    anatomy["label_map_frame"] = c.label_frame_anatomical;
+    anatomy["parts"] = nlohmann::json::array();
+    for (const auto& [name, file] : c.anatomy.parts)
+      anatomy["parts"].push_back(name); // their contents are the stage's input files
     return anatomy;
   }
   if (stage == "attachments")

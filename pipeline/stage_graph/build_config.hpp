@@ -13,6 +13,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
 
 namespace ligsim::pipeline {
@@ -54,6 +56,11 @@ struct AnatomyInputs {
   Eigen::Vector3d lateral_epicondyle_mm = Eigen::Vector3d::Constant(NAN);
   std::string medial_epicondyle_surface; ///< a surface file (resolved against the config)
   std::string lateral_epicondyle_surface;
+  /// Further parts the anatomy is read off (not config keys: the build sets them), by their
+  /// part names (anatomy::part_name): the knee's "tibia" (when the ligament's own distal bone is
+  /// the fibula), "fibula" and "patella", and its ligaments
+  /// ("MCL", "LCL", ...) for the side and the epicondyles.
+  std::map<std::string, std::filesystem::path> parts;
 };
 
 struct BuildConfig {
@@ -69,6 +76,10 @@ struct BuildConfig {
   std::filesystem::path labels;
   std::filesystem::path colour_table;
   std::string ligament_label, femur_label, tibia_label;
+  /// The surfaces came from a label map in a scanner's LPS frame, whose axes give proximal (+S)
+  /// and posterior (+P); false for a map made from surfaces (`ligsim labelmap`), whose axes are
+  /// the surfaces'.
+  bool label_frame_anatomical = false;
   AnatomyInputs anatomy;
   attachments::Rule femur_attachment;
   attachments::Rule tibia_attachment;
@@ -80,7 +91,17 @@ struct BuildConfig {
   model::Parameters model;
   MaterialDefaults material;
   FlexionDefaults flexion;
+  /// The ligament's part, when its name (its label's, in a label map) is one that
+  /// anatomy::recognise_part knows: "MCL", "LCL", "ACL", "PCL"; empty otherwise.
+  std::string ligament_part;
+  /// The sections the config file or the flags gave ("material", "attachments.femur",
+  /// "attachments.tibia"): a recognised ligament's defaults fill the others.
+  std::set<std::string> given;
 };
+
+/// Fills what `config.given` lacks with the defaults of `config.ligament_part` (material,
+/// footprints); returns where they come from, or nothing when the part has none.
+std::string apply_part_defaults(BuildConfig& config);
 
 /// Reads a TOML config (every key: docs/build.md). Relative paths are relative to the file's
 /// folder. Throws InputError with the file, line and key on a syntax error, an unknown key or a

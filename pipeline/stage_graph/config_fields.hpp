@@ -42,6 +42,9 @@ template <class Rule, class Visit> void visit_rule(Rule& r, Visit&& visit)
   visit("proximal_mm", r.proximal_mm);
   visit("posterior_mm", r.posterior_mm);
   visit("bone_distance_mm", r.bone_distance_mm);
+  visit("snap", r.snap);
+  visit("max_distance_mm", r.max_distance_mm);
+  visit("max_area_mm2", r.max_area_mm2);
 }
 
 /// The knee's side, directions and landmarks ([anatomy]).

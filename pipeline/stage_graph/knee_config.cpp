@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
 #include "pipeline/stage_graph/ligament_defaults.hpp"
+#include "stages/anatomy/part_names.hpp"
 
 #include <algorithm>
 #include <set>
@@ -36,7 +37,8 @@ LigamentConfig read_ligament(const toml::table& table, std::size_t index, const 
 
   // Its defaults by name, then the knee's shared sections, then its own.
   ligament.build = knee.shared;
-  if (const auto defaults = ligament_defaults(ligament.name)) {
+  const auto defaults = ligament_defaults(ligament.name);
+  if (defaults) {
     ligament.build.material = defaults->material;
     ligament.failure_strain = defaults->failure_strain;
     ligament.failure_load_n = defaults->failure_load_n;
@@ -82,8 +84,25 @@ LigamentConfig read_ligament(const toml::table& table, std::size_t index, const 
          "[ligament.input] label (a number or a name) and no surface",
          file.string(), table.source().begin.line, ligament.name, knee.labels.string());
 
+  // The footprints its name places where the config gives none (the LCL's on the fibula when the
+  // knee has one).
+  const toml::table* given = table_at(&table, "attachments");
+  const auto gives = [&](const char* bone) { return given != nullptr && given->contains(bone); };
+  std::vector<std::string> distal_bones = {"tibia", "fibula"};
+  if (defaults) {
+    const bool has_fibula = !knee.fibula.empty() || !knee.fibula_label.empty();
+    if (!gives("femur"))
+      ligament.build.femur_attachment = defaults->femur_footprint;
+    if (!gives("tibia") && !gives("fibula") && (defaults->distal_bone == "tibia" || has_fibula)) {
+      ligament.build.tibia_attachment = defaults->distal_footprint;
+      if (defaults->distal_bone == "fibula")
+        distal_bones = {"fibula", "tibia"};
+    }
+    ligament.defaults_source +=
+        "; footprints where the config gives none: " + defaults->footprint_source;
+  }
   ligament.distal_bone =
-      read_attachment_sections(table, prefix, file, {"tibia", "fibula"}, ligament.build);
+      read_attachment_sections(table, prefix, file, distal_bones, ligament.build);
   read_stage_sections(table, prefix, file, ligament.build);
   read_material_section(table, prefix, file, ligament.build);
   const bool fibula = ligament.distal_bone == "fibula";
@@ -97,6 +116,23 @@ LigamentConfig read_ligament(const toml::table& table, std::size_t index, const 
 }
 
 } // namespace
+
+void add_anatomy_parts(KneeConfig& knee)
+{
+  // The knee's tibia too: a ligament on the fibula has the fibula as its own distal bone.
+  std::map<std::string, fs::path> parts = {{"tibia", knee.tibia}};
+  if (!knee.fibula.empty())
+    parts["fibula"] = knee.fibula;
+  if (!knee.patella.empty())
+    parts["patella"] = knee.patella;
+  for (const LigamentConfig& ligament : knee.ligaments)
+    if (const auto part = anatomy::recognise_part(ligament.name);
+        part && anatomy::is_ligament(*part))
+      parts[anatomy::part_name(*part)] = ligament.build.surface;
+  knee.shared.anatomy.parts = parts;
+  for (LigamentConfig& ligament : knee.ligaments)
+    ligament.build.anatomy.parts = parts;
+}
 
 bool is_knee_config(const fs::path& file)
 {
@@ -123,24 +159,28 @@ KneeConfig load_knee_config(const fs::path& file)
   input.read_path("femur", knee.femur);
   input.read_path("tibia", knee.tibia);
   input.read_path("fibula", knee.fibula);
+  input.read_path("patella", knee.patella);
   input.read_path("labels", knee.labels);
   input.read_path("colour_table", knee.colour_table);
   input.read_label("femur_label", knee.femur_label);
   input.read_label("tibia_label", knee.tibia_label);
   input.read_label("fibula_label", knee.fibula_label);
+  input.read_label("patella_label", knee.patella_label);
   input.read("strict", knee.shared.strict);
   input.reject_unknown();
   if (!knee.labels.empty()) {
-    if (!knee.femur.empty() || !knee.tibia.empty() || !knee.fibula.empty())
+    if (!knee.femur.empty() || !knee.tibia.empty() || !knee.fibula.empty() || !knee.patella.empty())
       fail("{}: [input] gives a label map (labels) and bone surfaces: give the bones' labels "
            "(femur_label, tibia_label, fibula_label) instead of their files",
            file.string());
-    if (knee.femur_label.empty() || knee.tibia_label.empty())
-      fail("{}: a knee from a label map needs the femur's and the tibia's labels ([input] "
-           "femur_label and tibia_label)",
+    // A map without a femur builds (the femoral footprints are then the ligaments' ends), but
+    // cannot be flexed: the flexion says so.
+    if (knee.tibia_label.empty())
+      fail("{}: a knee from a label map needs the tibia's label ([input] tibia_label; and the "
+           "femur's, femur_label, to be flexed)",
            file.string());
   } else if (!knee.femur_label.empty() || !knee.tibia_label.empty() || !knee.fibula_label.empty() ||
-             !knee.colour_table.empty()) {
+             !knee.patella_label.empty() || !knee.colour_table.empty()) {
     fail("{}: [input] gives bone labels or a colour table but no label map (labels)",
          file.string());
   } else if (knee.femur.empty() || knee.tibia.empty()) {

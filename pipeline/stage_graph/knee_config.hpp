@@ -26,14 +26,20 @@ struct LigamentConfig {
 struct KneeConfig {
   std::filesystem::path file;
   std::filesystem::path femur, tibia, fibula; ///< fibula optional
+  std::filesystem::path patella; ///< optional: only the anatomy reads it (the knee's front)
   /// A segmentation label map instead of surface files: the bones' labels here, each
   /// ligament's in its build.ligament_label (numbers or names, as text); the surfaces are taken
   /// from the map into the knee's output folder by knee_surfaces_from_labels.
   std::filesystem::path labels, colour_table;
-  std::string femur_label, tibia_label, fibula_label;
+  std::string femur_label, tibia_label, fibula_label, patella_label;
   BuildConfig shared; ///< the bones, anatomy and stage sections before any ligament's own
   std::vector<LigamentConfig> ligaments;
 };
+
+/// Gives every ligament's anatomy (and the knee's) the parts it is read off: the fibula, the
+/// patella, and each ligament whose name anatomy::recognise_part knows (for the side and the
+/// epicondyles). Call once the surfaces are where the build reads them.
+void add_anatomy_parts(KneeConfig& knee);
 
 /// Whether `file` is a knee config: a TOML file with a `ligament` array of tables.
 bool is_knee_config(const std::filesystem::path& file);

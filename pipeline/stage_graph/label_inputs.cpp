@@ -2,8 +2,10 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/progress.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
+#include "stages/anatomy/part_names.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/labelmap/label_surface.hpp"
 #include "stages/repair/repair.hpp"
@@ -11,6 +13,7 @@
 #include <fmt/format.h>
 #include <vtkPolyData.h>
 
+#include <set>
 #include <tuple>
 
 namespace ligsim::pipeline {
@@ -35,29 +38,6 @@ nlohmann::json selection_json(const labelmap::Selection& s, const TriangleSurfac
           {"surface_triangles", surface.F.rows()}};
 }
 
-/// The names of the map's labels: its segment names, then those of its colour table (the one
-/// the config gives, else every table beside the map); the tables read go to `tables`.
-std::vector<labelmap::LabelName> label_names(const BuildConfig& config,
-                                             const labelmap::LabelImage& image,
-                                             std::vector<fs::path>& tables)
-{
-  std::vector<labelmap::LabelName> names = image.segment_names;
-  if (!config.colour_table.empty()) {
-    if (!fs::is_regular_file(config.colour_table))
-      fail("missing colour table '{}'", config.colour_table.string());
-    tables = {config.colour_table};
-  } else {
-    for (const fs::path& table : labelmap::colour_tables_beside(config.labels))
-      if (fs::is_regular_file(table))
-        tables.push_back(table);
-  }
-  for (const fs::path& table : tables) {
-    const std::vector<labelmap::LabelName> more = labelmap::read_colour_table(table);
-    names.insert(names.end(), more.begin(), more.end());
-  }
-  return names;
-}
-
 /// The map's frame and the sources of its names.
 nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& image,
                         const std::vector<fs::path>& tables)
@@ -66,7 +46,11 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
   for (const fs::path& table : tables)
     table_names.push_back(table.string());
   return {{"file", labels.string()},
-          {"frame", "LPS (physical coordinates as ITK reads the image)"},
+          {"frame", image.frame_from_surfaces
+                        ? "LPS as ITK reads the image, but the map was made from surfaces "
+                          "(ligsim labelmap): its axes are theirs and say nothing of the anatomy"
+                        : "LPS (physical coordinates as ITK reads the image)"},
+          {"frame_is_anatomical", !image.frame_from_surfaces},
           {"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
           {"spacing_mm", {image.spacing_mm.x(), image.spacing_mm.y(), image.spacing_mm.z()}},
           {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
@@ -76,15 +60,34 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
 
 } // namespace
 
+std::vector<labelmap::LabelName> label_names(const fs::path& labels, const fs::path& colour_table,
+                                             const labelmap::LabelImage& image,
+                                             std::vector<fs::path>& tables)
+{
+  std::vector<labelmap::LabelName> names = image.segment_names;
+  if (!colour_table.empty()) {
+    if (!fs::is_regular_file(colour_table))
+      fail("missing colour table '{}'", colour_table.string());
+    tables = {colour_table};
+  } else {
+    std::string note;
+    tables = labelmap::colour_tables_found(labels, &note);
+    if (!note.empty())
+      log_info(note);
+  }
+  for (const fs::path& table : tables) {
+    const std::vector<labelmap::LabelName> more = labelmap::read_colour_table(table);
+    names.insert(names.end(), more.begin(), more.end());
+  }
+  return names;
+}
+
 nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colour_table,
                                     const std::vector<LabelPart>& parts)
 {
   const labelmap::LabelImage image = labelmap::read_label_image(labels);
   std::vector<fs::path> tables;
-  BuildConfig naming;
-  naming.labels = labels;
-  naming.colour_table = colour_table;
-  const std::vector<labelmap::LabelName> names = label_names(naming, image, tables);
+  const std::vector<labelmap::LabelName> names = label_names(labels, colour_table, image, tables);
   nlohmann::json report = map_json(labels, image, tables);
   std::vector<TriangleSurface> surfaces;
   for (const LabelPart& part : parts) {
@@ -144,6 +147,15 @@ BuildConfig surfaces_from_labels(const BuildConfig& config, const fs::path& dir,
     result.*target = dir / file;
   }
   report = write_label_surfaces(config.labels, config.colour_table, parts);
+  result.label_frame_anatomical = report["frame_is_anatomical"].get<bool>();
+  // The ligament's names say which ligament it is, when they name one ligsim knows.
+  std::set<std::string> named;
+  for (const nlohmann::json& name : report["ligament"]["names"])
+    if (const auto part = anatomy::recognise_part(name["name"].get<std::string>());
+        part && anatomy::is_ligament(*part))
+      named.insert(anatomy::part_name(*part));
+  if (named.size() == 1)
+    result.ligament_part = *named.begin();
   return result;
 }
 
@@ -157,7 +169,8 @@ KneeConfig knee_surfaces_from_labels(const KneeConfig& knee, const fs::path& dir
   for (const auto& [name, label, target] :
        {std::tuple{"femur", knee.femur_label, &KneeConfig::femur},
         std::tuple{"tibia", knee.tibia_label, &KneeConfig::tibia},
-        std::tuple{"fibula", knee.fibula_label, &KneeConfig::fibula}}) {
+        std::tuple{"fibula", knee.fibula_label, &KneeConfig::fibula},
+        std::tuple{"patella", knee.patella_label, &KneeConfig::patella}}) {
     if (label.empty())
       continue;
     const fs::path file = dir / fmt::format("labels_{}.vtp", name);
@@ -174,6 +187,10 @@ KneeConfig knee_surfaces_from_labels(const KneeConfig& knee, const fs::path& dir
     ligament.build.tibia = ligament.distal_bone == "fibula" ? result.fibula : result.tibia;
   }
   report = write_label_surfaces(knee.labels, knee.colour_table, parts);
+  // The anatomy reads the map's frame, when it is a scanner's.
+  result.shared.label_frame_anatomical = report["frame_is_anatomical"].get<bool>();
+  for (LigamentConfig& ligament : result.ligaments)
+    ligament.build.label_frame_anatomical = result.shared.label_frame_anatomical;
   return result;
 }
 

@@ -4,6 +4,7 @@
 
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/knee_config.hpp"
+#include "stages/labelmap/label_image.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +28,13 @@ inline constexpr const char* ligament_from_labels = "labels_ligament.vtp";
 /// `config`.
 BuildConfig surfaces_from_labels(const BuildConfig& config, const std::filesystem::path& dir,
                                  nlohmann::json& report);
+
+/// The names of the map's labels: its segment names, then those of its colour table
+/// (`colour_table`, else labelmap::colour_tables_found); the tables read go to `tables`.
+std::vector<labelmap::LabelName> label_names(const std::filesystem::path& labels,
+                                             const std::filesystem::path& colour_table,
+                                             const labelmap::LabelImage& image,
+                                             std::vector<std::filesystem::path>& tables);
 
 /// One surface to take from a label map.
 struct LabelPart {

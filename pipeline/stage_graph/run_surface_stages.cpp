@@ -2,6 +2,7 @@
 
 #include "pipeline/stage_graph/stage_files.hpp"
 
+#include "common/progress.hpp"
 #include "common/vtk_files.hpp"
 #include "stages/attachments/attachments.hpp"
 #include "stages/distance/distance.hpp"
@@ -13,6 +14,7 @@
 #include "stages/tetmesh/tetmesh.hpp"
 #include "stages/voxelize/voxelize.hpp"
 
+#include <fmt/format.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
@@ -31,7 +33,8 @@ nlohmann::json area_json(const attachments::Area& area)
           {"vertices", area.vertices.size()},
           {"mean_mm", {area.mean.x(), area.mean.y(), area.mean.z()}},
           {"area_mm2", area.area_mm2},
-          {"extent_mm", area.extent_mm}};
+          {"extent_mm", area.extent_mm},
+          {"corrections", area.corrections}};
 }
 
 std::vector<bool> membership(const std::vector<int>& vertices, Eigen::Index count)
@@ -69,6 +72,10 @@ nlohmann::json run_attachments(const BuildConfig& config, const fs::path& dir)
     inputs.landmarks[name] = landmark.point_mm;
   const attachments::Attachments found =
       attachments::find(inputs, config.femur_attachment, config.tibia_attachment);
+  for (const attachments::Area* area : {&found.femur, &found.tibia})
+    for (const std::string& correction : area->corrections)
+      log_info(
+          fmt::format("{} footprint: {}", area == &found.femur ? "femoral" : "distal", correction));
 
   auto surface = io::to_polydata(ligament);
   io::add_flags(surface->GetPointData(), "femur_attachment",

@@ -26,7 +26,8 @@ std::vector<fs::path> none(const BuildConfig&)
   return {};
 }
 
-/// The files the anatomy reads: landmark surfaces, and the bones (the proximal direction).
+/// The files the anatomy reads: landmark surfaces, the bones and the further parts it is read
+/// off.
 std::vector<fs::path> anatomy_inputs(const BuildConfig& c)
 {
   std::vector<fs::path> inputs;
@@ -37,6 +38,8 @@ std::vector<fs::path> anatomy_inputs(const BuildConfig& c)
   for (const fs::path& bone : {c.femur, c.tibia})
     if (!bone.empty())
       inputs.push_back(bone);
+  for (const auto& [name, file] : c.anatomy.parts)
+    inputs.push_back(file);
   return inputs;
 }
 

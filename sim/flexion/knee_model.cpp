@@ -141,6 +141,11 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
     LigamentModel ligament{entry.name, load_knee_model(dir / entry.folder), dir / entry.folder,
                            entry};
     KneeModel& model = ligament.model;
+    if (!bones.count("femur"))
+      fail("{}: this knee has no femur (its label map names none), and a flexion turns the "
+           "femur: rebuild it with the femur's label (the knee config's [input] femur_label; a "
+           "femoral cartilage label can stand in, as data/vhf-right-knee/mcl_labels.toml has it)",
+           dir.string());
     model.femur = bones.at("femur");
     model.tibia = bones.at("tibia");
     model.fibula = bones.count("fibula") ? bones.at("fibula") : nullptr;

@@ -38,7 +38,10 @@ Area from_indices(const Rule& rule, const Inputs& inputs, Bone bone)
     if (v < 0 || v >= count)
       fail("{} attachment: vertex index {} is out of range (the surface has {} vertices)",
            name_of(bone), v, count);
-  return {rule.indices, fmt::format("indices ({} given)", rule.indices.size())};
+  Area area;
+  area.vertices = rule.indices;
+  area.rule = fmt::format("indices ({} given)", rule.indices.size());
+  return area;
 }
 
 Area from_array(const Rule& rule, const Inputs& inputs, Bone bone)
@@ -92,48 +95,6 @@ Area from_patch(const Rule& rule, const Inputs& inputs, Bone bone)
   return area;
 }
 
-Area from_landmark(const Rule& rule, const Inputs& inputs, Bone bone)
-{
-  Eigen::Vector3d centre = rule.point_mm;
-  std::string what = "the given point";
-  if (!rule.landmark.empty()) {
-    const auto found = inputs.landmarks.find(rule.landmark);
-    if (found == inputs.landmarks.end()) {
-      std::string known;
-      for (const auto& [name, point] : inputs.landmarks)
-        known += (known.empty() ? "" : ", ") + name;
-      fail("{} attachment: no landmark '{}' in the anatomy (known: {})", name_of(bone),
-           rule.landmark, known.empty() ? "none" : known);
-    }
-    centre = found->second;
-    what = "landmark " + rule.landmark;
-  }
-  for (const auto& [offset, direction, name] :
-       {std::tuple{rule.proximal_mm, inputs.proximal, "proximal"},
-        std::tuple{rule.posterior_mm, inputs.posterior, "posterior"}}) {
-    if (offset == 0.0)
-      continue;
-    if (!direction)
-      fail("{} attachment: an offset {} of the landmark needs the knee's {} direction ([anatomy] "
-           "{}, or a label map's frame)",
-           name_of(bone), name, name, name);
-    centre += offset * *direction;
-    what += fmt::format(" moved {} mm {}", offset, name);
-  }
-  if (!centre.allFinite())
-    fail("{} attachment: rule 'landmark' needs `landmark` (a name) or `point_mm`", name_of(bone));
-  if (!(rule.radius_mm > 0.0))
-    fail("{} attachment: landmark radius must be positive, got {} mm", name_of(bone),
-         rule.radius_mm);
-  Area area;
-  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v)
-    if ((inputs.ligament->V.row(v).transpose() - centre).norm() <= rule.radius_mm)
-      area.vertices.push_back(static_cast<int>(v));
-  area.rule = fmt::format("landmark: within {} mm of {} ({:.2f}, {:.2f}, {:.2f})", rule.radius_mm,
-                          what, centre.x(), centre.y(), centre.z());
-  return area;
-}
-
 Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* other)
 {
   if (!(rule.end_length_mm > 0.0))
@@ -177,6 +138,94 @@ Area from_end(const Rule& rule, const Inputs& inputs, Bone bone, const Area* oth
       fmt::format("end: within {} mm of the {} end along the main axis ({:.3f}, {:.3f}, "
                   "{:.3f}), {}",
                   rule.end_length_mm, at_max ? "max" : "min", axis.x(), axis.y(), axis.z(), why);
+  return area;
+}
+
+/// The landmark a rule names, if the anatomy has it (a given point otherwise).
+std::optional<Eigen::Vector3d> landmark_point(const Rule& rule, const Inputs& inputs, Bone bone)
+{
+  if (rule.landmark.empty())
+    return rule.point_mm.allFinite() ? std::optional(rule.point_mm) : std::nullopt;
+  const auto found = inputs.landmarks.find(rule.landmark);
+  if (found != inputs.landmarks.end())
+    return found->second;
+  if (rule.snap)
+    return std::nullopt;
+  std::string known;
+  for (const auto& [name, point] : inputs.landmarks)
+    known += (known.empty() ? "" : ", ") + name;
+  fail("{} attachment: no landmark '{}' in the anatomy (known: {})", name_of(bone), rule.landmark,
+       known.empty() ? "none" : known);
+}
+
+/// The ligament's end toward `bone`, `length_mm` long.
+Area end_toward(const Rule& rule, const Inputs& inputs, Bone bone, double length_mm)
+{
+  Rule end = rule;
+  end.end = !inputs.proximal ? "auto" : bone == Bone::femur ? "proximal" : "distal";
+  end.end_length_mm = length_mm;
+  return from_end(end, inputs, bone, nullptr);
+}
+
+/// The ligament's vertices within `radius_mm` of `centre`.
+std::vector<int> disc(const Inputs& inputs, const Eigen::Vector3d& centre, double radius_mm)
+{
+  std::vector<int> vertices;
+  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v)
+    if ((inputs.ligament->V.row(v).transpose() - centre).norm() <= radius_mm)
+      vertices.push_back(static_cast<int>(v));
+  return vertices;
+}
+
+Area from_landmark(const Rule& rule, const Inputs& inputs, Bone bone)
+{
+  if (!(rule.radius_mm > 0.0))
+    fail("{} attachment: landmark radius must be positive, got {} mm", name_of(bone),
+         rule.radius_mm);
+  const std::optional<Eigen::Vector3d> landmark = landmark_point(rule, inputs, bone);
+  if (!landmark && rule.landmark.empty())
+    fail("{} attachment: rule 'landmark' needs `landmark` (a name) or `point_mm`", name_of(bone));
+  if (!landmark) { // snap: the anatomy could not find it
+    Area area = end_toward(rule, inputs, bone, rule.radius_mm);
+    area.corrections.push_back(fmt::format(
+        "the anatomy has no {}: the footprint is the ligament's end toward the bone instead",
+        rule.landmark));
+    return area;
+  }
+  Eigen::Vector3d centre = *landmark;
+  std::string what = rule.landmark.empty() ? "the given point" : "landmark " + rule.landmark;
+  for (const auto& [offset, direction, name] :
+       {std::tuple{rule.proximal_mm, inputs.proximal, "proximal"},
+        std::tuple{rule.posterior_mm, inputs.posterior, "posterior"}}) {
+    if (offset == 0.0)
+      continue;
+    if (!direction)
+      fail("{} attachment: an offset {} of the landmark needs the knee's {} direction ([anatomy] "
+           "{}, or a label map's frame)",
+           name_of(bone), name, name, name);
+    centre += offset * *direction;
+    what += fmt::format(" moved {} mm {}", offset, name);
+  }
+  Area area;
+  area.vertices = disc(inputs, centre, rule.radius_mm);
+  if (area.vertices.empty() && rule.snap) {
+    const Area end = end_toward(rule, inputs, bone, 3.0 * rule.radius_mm);
+    int nearest = end.vertices.front();
+    for (int v : end.vertices)
+      if ((inputs.ligament->V.row(v).transpose() - centre).norm() <
+          (inputs.ligament->V.row(nearest).transpose() - centre).norm())
+        nearest = v;
+    const Eigen::Vector3d snapped = inputs.ligament->V.row(nearest).transpose();
+    area.corrections.push_back(
+        fmt::format("snapped: {} ({:.2f}, {:.2f}, {:.2f}) missed the ligament by {:.1f} mm; the "
+                    "disc is centred on the ligament's nearest point at its end toward the bone",
+                    what, centre.x(), centre.y(), centre.z(), (snapped - centre).norm()));
+    centre = snapped;
+    what = "the snapped point";
+    area.vertices = disc(inputs, centre, rule.radius_mm);
+  }
+  area.rule = fmt::format("landmark: within {} mm of {} ({:.2f}, {:.2f}, {:.2f})", rule.radius_mm,
+                          what, centre.x(), centre.y(), centre.z());
   return area;
 }
 
@@ -248,49 +297,79 @@ Attachments find(const Inputs& inputs, const Rule& femur_rule, const Rule& tibia
   const std::string femur_kind = resolved_rule(femur_rule, inputs, Bone::femur);
   const std::string tibia_kind = resolved_rule(tibia_rule, inputs, Bone::tibia);
 
-  auto direct = [&](const std::string& kind, const Rule& rule, Bone bone) -> std::optional<Area> {
+  // One footprint by its rule; `other` is the other footprint, for an end rule's "auto" end.
+  const auto make = [&](const std::string& kind, const Rule& rule, Bone bone,
+                        const Area* other) -> Area {
+    Area area;
     if (kind == "indices")
-      return from_indices(rule, inputs, bone);
-    if (kind == "array")
-      return from_array(rule, inputs, bone);
-    if (kind == "proximity")
-      return from_proximity(rule, inputs, bone);
-    if (kind == "patch")
-      return from_patch(rule, inputs, bone);
-    if (kind == "landmark")
-      return from_landmark(rule, inputs, bone);
-    if (kind == "end")
-      return std::nullopt;
-    fail("{} attachment: unknown rule '{}' (use auto, indices, array, proximity, patch, landmark "
-         "or end)",
-         name_of(bone), kind);
+      area = from_indices(rule, inputs, bone);
+    else if (kind == "array")
+      area = from_array(rule, inputs, bone);
+    else if (kind == "proximity")
+      area = from_proximity(rule, inputs, bone);
+    else if (kind == "patch")
+      area = from_patch(rule, inputs, bone);
+    else if (kind == "landmark")
+      area = from_landmark(rule, inputs, bone);
+    else if (kind == "end")
+      area = from_end(rule, inputs, bone, other);
+    else
+      fail("{} attachment: unknown rule '{}' (use auto, indices, array, proximity, patch, "
+           "landmark or end)",
+           name_of(bone), kind);
+    if (kind != "indices" && kind != "array")
+      keep_next_to_bone(area, rule, inputs, bone);
+    finish(area, *inputs.ligament, bone);
+    return area;
   };
-  const auto near_bone = [&](std::optional<Area>& area, const std::string& kind, const Rule& rule,
-                             Bone bone) {
-    if (area && kind != "indices" && kind != "array")
-      keep_next_to_bone(*area, rule, inputs, bone);
+  // The footprint held to its published size and place (Rule::max_area_mm2, max_distance_mm).
+  const auto held = [&](const std::string& kind, const Rule& rule, Bone bone,
+                        const Area* other) -> Area {
+    Area area = make(kind, rule, bone, other);
+    if (rule.max_area_mm2 > 0.0 && area.area_mm2 > rule.max_area_mm2) {
+      if (kind != "landmark")
+        fail("{} attachment: the footprint ({}) is {:.0f} mm^2, more than the {:.0f} mm^2 its "
+             "published area allows: give a rule that finds a smaller one ([attachments] rule, "
+             "distance_mm or bone_distance_mm), or max_area_mm2 = 0 to accept it",
+             name_of(bone), area.rule, area.area_mm2, rule.max_area_mm2);
+      Rule smaller = rule;
+      const double found_mm2 = area.area_mm2;
+      while (area.area_mm2 > rule.max_area_mm2 && smaller.radius_mm > 1.0) {
+        smaller.radius_mm *= 0.9;
+        const std::vector<std::string> corrections = area.corrections;
+        area = make(kind, smaller, bone, other);
+        area.corrections = corrections;
+      }
+      area.corrections.push_back(fmt::format(
+          "the disc's radius shrunk from {} to {:.2f} mm: the footprint was {:.0f} mm^2, more "
+          "than the {:.0f} mm^2 its published area allows; now {:.0f} mm^2",
+          rule.radius_mm, smaller.radius_mm, found_mm2, rule.max_area_mm2, area.area_mm2));
+    }
+    if (rule.max_distance_mm > 0.0 && kind == "landmark")
+      if (const auto landmark = landmark_point(rule, inputs, bone)) {
+        const double distance = (area.mean - *landmark).norm();
+        if (distance > rule.max_distance_mm)
+          fail("{} attachment: the footprint found ({}; {}) lies {:.1f} mm from {}, farther than "
+               "the {:.1f} mm its published place allows: the ligament's end does not reach its "
+               "landmark. Check the ligament's and the bone's segmentation, or give the "
+               "footprint ([attachments] rule = \"landmark\" with point_mm, or another rule)",
+               name_of(bone), area.rule,
+               area.corrections.empty() ? "as found" : area.corrections.back(), distance,
+               rule.landmark.empty() ? "its point" : rule.landmark, rule.max_distance_mm);
+      }
+    return area;
   };
 
-  Attachments result;
-  std::optional<Area> femur = direct(femur_kind, femur_rule, Bone::femur);
-  std::optional<Area> tibia = direct(tibia_kind, tibia_rule, Bone::tibia);
-  near_bone(femur, femur_kind, femur_rule, Bone::femur);
-  near_bone(tibia, tibia_kind, tibia_rule, Bone::tibia);
-  if (femur)
-    finish(*femur, *inputs.ligament, Bone::femur);
-  if (tibia)
-    finish(*tibia, *inputs.ligament, Bone::tibia);
   // End rules last: "auto" ends look away from the other area when it is known.
-  if (!tibia) {
-    tibia = from_end(tibia_rule, inputs, Bone::tibia, femur ? &*femur : nullptr);
-    near_bone(tibia, tibia_kind, tibia_rule, Bone::tibia);
-    finish(*tibia, *inputs.ligament, Bone::tibia);
-  }
-  if (!femur) {
-    femur = from_end(femur_rule, inputs, Bone::femur, &*tibia);
-    near_bone(femur, femur_kind, femur_rule, Bone::femur);
-    finish(*femur, *inputs.ligament, Bone::femur);
-  }
+  std::optional<Area> femur, tibia;
+  if (femur_kind != "end")
+    femur = held(femur_kind, femur_rule, Bone::femur, nullptr);
+  if (tibia_kind != "end")
+    tibia = held(tibia_kind, tibia_rule, Bone::tibia, nullptr);
+  if (!tibia)
+    tibia = held(tibia_kind, tibia_rule, Bone::tibia, femur ? &*femur : nullptr);
+  if (!femur)
+    femur = held(femur_kind, femur_rule, Bone::femur, &*tibia);
 
   std::vector<int> shared;
   std::set_intersection(femur->vertices.begin(), femur->vertices.end(), tibia->vertices.begin(),
@@ -301,6 +380,7 @@ Attachments find(const Inputs& inputs, const Rule& femur_rule, const Rule& tibia
          "({:.2f}, {:.2f}, {:.2f}) mm)",
          shared.size(), shared.front(), p.x(), p.y(), p.z());
   }
+  Attachments result;
   result.femur = std::move(*femur);
   result.tibia = std::move(*tibia);
   return result;

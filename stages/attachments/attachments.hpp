@@ -34,6 +34,14 @@ namespace ligsim::attachments {
 ///                 given, else end.
 /// Any rule but indices and array keeps, when `bone_distance_mm` > 0 and the bone is given, only
 /// the vertices within that distance of the bone: the footprint is the side facing the bone.
+///
+/// A landmark rule with `snap` holds its footprint to the ligament it serves: when the disc's
+/// centre misses the ligament (no vertex within the radius), the disc moves to the vertex nearest
+/// that centre at the ligament's end toward this bone (proximal for the femur, distal for the
+/// other); when the anatomy lacks the landmark, the footprint is that end. Then, for any rule, a
+/// footprint farther than `max_distance_mm` from its landmark is refused, and one larger than
+/// `max_area_mm2` has its disc shrunk until it fits (a rule without a disc is refused): both say
+/// what was found and what to give.
 struct Rule {
   std::string rule = "auto";
   std::vector<int> indices;
@@ -48,6 +56,9 @@ struct Rule {
   double proximal_mm = 0.0;  ///< "landmark": offset up the leg from the landmark
   double posterior_mm = 0.0; ///< "landmark": offset toward posterior
   double bone_distance_mm = 0.0;
+  bool snap = false;            ///< "landmark": move to the ligament when its centre misses it
+  double max_distance_mm = 0.0; ///< "landmark": farthest the footprint may lie from it; 0: any
+  double max_area_mm2 = 0.0;    ///< largest footprint (Area::area_mm2); 0: any
 };
 
 struct Area {
@@ -57,6 +68,7 @@ struct Area {
   double area_mm2 = 0.0;  ///< ligament surface in the footprint: triangles weighted by the share
                           ///< of their corners in it
   double extent_mm = 0.0; ///< largest distance between two of its vertices
+  std::vector<std::string> corrections; ///< what a snap or a published bound changed
 };
 
 struct Inputs {

@@ -13,6 +13,7 @@
 #include "stages/io/vtk_convert.hpp"
 #include "stages/io/vtp_check.hpp"
 
+#include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
 #include <vtkCleanPolyData.h>
 #include <vtkDataArray.h>
@@ -56,9 +57,25 @@ template <class Reader> vtkSmartPointer<vtkPolyData> run_reader(const fs::path& 
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file, const std::string& mesh)
 {
   const std::string extension = lower_extension(file);
-  // glTF is checked by our code, then read by VTK (its reader trusts the file).
-  if (extension == ".glb" || extension == ".gltf")
-    return read_gltf(file, mesh);
+  // glTF is checked by our code, then read by VTK (its reader trusts the file). Several meshes
+  // joined by '+' are one surface: an atlas' bone in pieces (its vertices where the pieces
+  // meet coincide, and are merged below).
+  if (extension == ".glb" || extension == ".gltf") {
+    if (mesh.find('+') == std::string::npos)
+      return read_gltf(file, mesh);
+    auto joined = vtkSmartPointer<vtkAppendPolyData>::New();
+    std::size_t start = 0;
+    while (start <= mesh.size()) {
+      const std::size_t end = std::min(mesh.find('+', start), mesh.size());
+      const std::string piece = mesh.substr(start, end - start);
+      if (piece.empty())
+        fail("'{}#{}': an empty mesh name between '+' signs", file.string(), mesh);
+      joined->AddInputData(read_gltf(file, piece));
+      start = end + 1;
+    }
+    joined->Update();
+    return joined->GetOutput();
+  }
   // STL and OBJ are read by our own code; PLY, VTP and legacy VTK are checked before VTK reads
   // them (its readers crash on truncated files and trust the counts).
   if (extension == ".stl")

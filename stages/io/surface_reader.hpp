@@ -13,11 +13,11 @@
 namespace ligsim::io {
 
 /// Reads a triangle surface. Polygons are triangulated, coincident points merged, unused points
-/// dropped. A glTF path may end in `#name` to choose a mesh (see split_surface_path and
-/// read_gltf). Throws InputError naming the file on: a missing file, an unknown extension, a
-/// file with no triangles, a non-finite coordinate (with the vertex index).
-/// If `point_arrays` is given, it receives the file's one-component point-data arrays, by name,
-/// one value per (merged) vertex.
+/// dropped. A glTF path may end in `#name` to choose a mesh, or `#A+B+C` to join several into
+/// one surface (see split_surface_path and read_gltf). Throws InputError naming the file on: a
+/// missing file, an unknown extension, a file with no triangles, a non-finite coordinate (with the
+/// vertex index). If `point_arrays` is given, it receives the file's one-component point-data
+/// arrays, by name, one value per (merged) vertex.
 TriangleSurface read_surface(const std::filesystem::path& file,
                              std::map<std::string, Eigen::VectorXd>* point_arrays = nullptr);
 

@@ -7,6 +7,11 @@
 
 namespace ligsim::labelmap {
 
+namespace {
+constexpr const char* kFrameKey = "ligsim_frame";
+constexpr const char* kFromSurfaces = "surfaces";
+} // namespace
+
 LabelImage read_label_image(const std::filesystem::path& file)
 {
   itk_io::RawLabelImage raw = itk_io::read(file);
@@ -20,6 +25,10 @@ LabelImage read_label_image(const std::filesystem::path& file)
   }
   image.labels = std::move(raw.labels);
   image.segment_names = segment_names(raw.key_values, file);
+  image.frame_from_surfaces =
+      std::find(raw.key_values.begin(), raw.key_values.end(),
+                std::pair<std::string, std::string>{kFrameKey, kFromSurfaces}) !=
+      raw.key_values.end();
   return image;
 }
 
@@ -39,6 +48,8 @@ void write_label_image(const LabelImage& image, const std::filesystem::path& fil
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (!image.segment_names.empty() && extension == ".nrrd")
     raw.key_values = segment_keys(image.segment_names);
+  if (image.frame_from_surfaces && extension == ".nrrd")
+    raw.key_values.emplace_back(kFrameKey, kFromSurfaces);
   itk_io::write(raw, file);
 }
 

@@ -23,6 +23,9 @@ struct LabelImage {
   std::vector<std::int32_t> labels;
   /// Slicer's segment names from a NRRD header (`SegmentN_Name`, `SegmentN_LabelValue`).
   std::vector<LabelName> segment_names;
+  /// Made from surfaces (`ligsim labelmap`): its frame is theirs, not a scanner's, and says
+  /// nothing of the anatomy (NRRD key `ligsim_frame:=surfaces`; other formats cannot carry it).
+  bool frame_from_surfaces = false;
 
   std::size_t index(int i, int j, int k) const
   {

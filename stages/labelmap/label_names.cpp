@@ -201,6 +201,32 @@ std::vector<fs::path> colour_tables_beside(const fs::path& image)
   return tables;
 }
 
+std::vector<fs::path> colour_tables_found(const fs::path& image, std::string* note)
+{
+  std::vector<fs::path> found;
+  for (const fs::path& table : colour_tables_beside(image))
+    if (fs::is_regular_file(table))
+      found.push_back(table);
+  if (!found.empty())
+    return found;
+  std::vector<fs::path> in_folder;
+  std::error_code error;
+  const fs::path folder = image.has_parent_path() ? image.parent_path() : fs::path(".");
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
+    if (entry.is_regular_file() && lower(entry.path().extension().string()) == ".ctbl")
+      in_folder.push_back(entry.path());
+  std::sort(in_folder.begin(), in_folder.end());
+  if (in_folder.size() == 1)
+    return in_folder;
+  if (in_folder.size() > 1 && note != nullptr) {
+    *note = "several colour tables lie beside the map, none with its name:";
+    for (const fs::path& table : in_folder)
+      *note += " " + table.filename().string();
+    *note += " (give one with --colour-table)";
+  }
+  return {};
+}
+
 std::int32_t resolve_label(const std::string& text, const std::vector<LabelName>& names,
                            const std::string& what)
 {

@@ -40,6 +40,13 @@ void write_colour_table(const std::vector<LabelName>& names, const std::filesyst
 /// as well as `seg.seg`).
 std::vector<std::filesystem::path> colour_tables_beside(const std::filesystem::path& image);
 
+/// The colour tables that name a label map's labels: those of colour_tables_beside that exist;
+/// if none does, the one `.ctbl` file in the map's folder (a Slicer bundle saves `seg.nrrd` beside
+/// `knee.ctbl`). Several `.ctbl` files and none of the map's own stem: none (which one is meant
+/// is not known; `note`, if given, says so).
+std::vector<std::filesystem::path> colour_tables_found(const std::filesystem::path& image,
+                                                       std::string* note = nullptr);
+
 /// The label `text` names: a number as itself, else a name of `names`, matched exactly, then
 /// ignoring case. Throws InputError, starting with `what`, if the name is unknown (listing the
 /// names there are), ambiguous (naming the labels it could be), or a segment of another layer.

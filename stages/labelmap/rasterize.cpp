@@ -18,6 +18,7 @@ LabelImage rasterize(const std::vector<LabeledSurface>& parts, const Eigen::Vect
   image.origin_mm = lo + 0.5 * spacing_mm;
   image.dims = ((hi - lo).array() / spacing_mm.array()).ceil().cast<int>().max(1).matrix();
   image.labels.assign(static_cast<std::size_t>(image.dims.prod()), 0);
+  image.frame_from_surfaces = true;
 
   Progress progress("labelmap", parts.size());
   for (const LabeledSurface& part : parts) {

@@ -122,7 +122,7 @@ TEST(KneeLabels, BadLabelConfigsAreRefusedBeforeAnythingIsWritten)
   expect_rejected("[input]\nfemur = \"femur.vtp\"\ntibia = \"tibia.vtp\"\n" + a,
                   "gives no label map");
   expect_rejected("[input]\nlabels = \"knee.nrrd\"\nfemur_label = \"femur\"\n" + a,
-                  "needs the femur's and the tibia's labels");
+                  "needs the tibia's label");
   expect_rejected(std::string("[input]\nlabels = \"knee.nrrd\"\nfemur = \"femur.vtp\"\n") +
                       "tibia_label = 2\nfemur_label = 1\n" + a,
                   "instead of their files");
