@@ -9,7 +9,7 @@ find_package(CGAL REQUIRED)
 find_package(VTK REQUIRED COMPONENTS
   CommonCore CommonDataModel CommonExecutionModel
   FiltersCore FiltersGeneral FiltersGeometry FiltersSources
-  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage ImagingGeneral
   # Pictures (sim/flexion/render): off-screen OpenGL through X, text, charts.
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
   ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2)

@@ -6,6 +6,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "pipeline/commands/anatomy_outputs.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/knee_build.hpp"
 #include "pipeline/stage_graph/knee_from_labels.hpp"
@@ -38,7 +39,7 @@ struct BuildOptions {
   double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
   double in_situ = kUnset;
   std::string field_method, span;
-  bool force = false, strict = false;
+  bool force = false, strict = false, no_images = false;
 };
 
 void add_options(CLI::App* command, BuildOptions& o)
@@ -125,6 +126,8 @@ void add_options(CLI::App* command, BuildOptions& o)
   command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
       ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
+  command->add_flag("--no-images", o.no_images,
+                    "no anatomy.png (the landmarks on the bones; no X server needed)");
   command->add_flag("--strict", o.strict,
                     "refuse a defective ligament surface instead of repairing it");
 }
@@ -200,9 +203,13 @@ BuildConfig resolve_config(const BuildOptions& o)
   return config;
 }
 
-/// What the anatomy stage found, and what it could not, on stderr (anatomy.json has it all).
-void report_anatomy(const fs::path& dir)
+/// What the anatomy stage found, and what it could not, on stderr (anatomy.json has it all),
+/// and the landmarks as points and in a picture.
+void report_anatomy(const fs::path& dir, bool picture)
 {
+  if (!fs::exists(dir / knee_anatomy_file))
+    return; // a stage that does not need it
+  write_anatomy_outputs(dir, picture);
   const KneeAnatomy anatomy = read_knee_anatomy(dir);
   if (!anatomy.side.empty())
     log_info(fmt::format("anatomy: a {} knee ({})", anatomy.side, anatomy.side_source));
@@ -233,25 +240,28 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
       pipeline::knee_surfaces_from_labels(pipeline::load_knee_config(o.config), out, label_report);
   pipeline::add_anatomy_parts(knee);
   // Every input is read before a stage runs, so that bad input leaves nothing behind.
+  nlohmann::json bone_repair = nlohmann::json::object();
+  std::vector<std::pair<std::string, TriangleSurface>> bones;
+  for (const auto& [bone, file] :
+       {std::pair{"femur", knee.femur}, std::pair{"tibia", knee.tibia},
+        std::pair{"fibula", knee.fibula}, std::pair{"patella", knee.patella}}) {
+    if (file.empty())
+      continue;
+    repair::Report report;
+    bones.emplace_back(bone, *pipeline::load_bone(file, &report));
+    for (const std::string& line : repair::describe(report))
+      log_info(fmt::format("{} repair: {}", bone, line));
+    bone_repair[bone] = repair::to_json(report);
+  }
   nlohmann::json repairs = nlohmann::json::object();
   for (pipeline::LigamentConfig& ligament : knee.ligaments) {
     apply_stage_flags(o, ligament.build);
     repair::Report report;
-    pipeline::load_ligament(ligament.build, nullptr, &report);
+    const TriangleSurface surface = pipeline::load_ligament(ligament.build, nullptr, &report);
     for (const std::string& line : repair::describe(report))
       log_info(fmt::format("{} surface repair: {}", ligament.name, line));
     repairs[ligament.name] = repair::to_json(report);
-  }
-  nlohmann::json bone_repair = nlohmann::json::object();
-  for (const auto& [bone, file] : {std::pair{"femur", knee.femur}, std::pair{"tibia", knee.tibia},
-                                   std::pair{"fibula", knee.fibula}}) {
-    if (file.empty())
-      continue;
-    repair::Report report;
-    pipeline::load_bone(file, &report);
-    for (const std::string& line : repair::describe(report))
-      log_info(fmt::format("{} repair: {}", bone, line));
-    bone_repair[bone] = repair::to_json(report);
+    pipeline::require_a_bone_nearby("ligament " + ligament.name, surface, bones);
   }
 
   RunSummary summary(target == "model" ? "build" : target);
@@ -265,7 +275,7 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
     summary.results()["found_by_name"] = found_by_name;
   pipeline::build_knee(knee, out, target, o.force, summary);
   if (target == "model")
-    report_anatomy(out);
+    report_anatomy(out, !o.no_images);
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));
 }
@@ -342,9 +352,13 @@ void run_build_job(const BuildOptions& o, const std::string& target)
         label_report["ligament"]["defaults_by_name"] = used;
       }
     }
-    pipeline::load_ligament(config, nullptr, &repairs);
-    pipeline::load_bone(config.femur, &femur_repairs);
-    pipeline::load_bone(config.tibia, &tibia_repairs);
+    const TriangleSurface ligament = pipeline::load_ligament(config, nullptr, &repairs);
+    std::vector<std::pair<std::string, TriangleSurface>> bones;
+    for (const auto& [name, file, report] : {std::tuple{"femur", &config.femur, &femur_repairs},
+                                             std::tuple{"tibia", &config.tibia, &tibia_repairs}})
+      if (auto bone = pipeline::load_bone(*file, report))
+        bones.emplace_back(name, std::move(*bone));
+    pipeline::require_a_bone_nearby("the ligament", ligament, bones);
   } catch (const Error&) {
     clean_up();
     throw;
@@ -378,7 +392,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
     clean_up();
     throw;
   }
-  report_anatomy(out);
+  report_anatomy(out, !o.no_images);
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));
 }

@@ -207,6 +207,8 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
   if (stage == "anatomy") {
     nlohmann::json anatomy = as_json(c.anatomy, [](auto& p, auto&& v) { visit_anatomy(p, v); });
     anatomy["label_map_frame"] = c.label_frame_anatomical;
+    if (c.anatomy.known)
+      anatomy["known"] = to_json(*c.anatomy.known);
     anatomy["parts"] = nlohmann::json::array();
     for (const auto& [name, file] : c.anatomy.parts)
       anatomy["parts"].push_back(name); // their contents are the stage's input files

@@ -1,6 +1,7 @@
 #pragma once
 /// @brief Every parameter of `ligsim build`, from a TOML config file and command-line flags.
 
+#include "common/knee_anatomy.hpp"
 #include "stages/attachments/attachments.hpp"
 #include "stages/centerline/centerline.hpp"
 #include "stages/fibers/fibers.hpp"
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -61,6 +63,9 @@ struct AnatomyInputs {
   /// the fibula), "fibula" and "patella", and its ligaments
   /// ("MCL", "LCL", ...) for the side and the epicondyles.
   std::map<std::string, std::filesystem::path> parts;
+  /// The knee's anatomy, found once for all its ligaments (a knee build sets it): the anatomy
+  /// stage writes it as it is.
+  std::optional<KneeAnatomy> known;
 };
 
 struct BuildConfig {

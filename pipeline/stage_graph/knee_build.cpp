@@ -88,6 +88,15 @@ void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,
     summary.stage(ligament.name + "/" + stage) = entry;
 }
 
+KneeConfig with_knee_anatomy(const KneeConfig& knee)
+{
+  KneeConfig found = knee;
+  found.shared.anatomy.known = knee_anatomy(knee.shared);
+  for (LigamentConfig& ligament : found.ligaments)
+    ligament.build.anatomy.known = found.shared.anatomy.known;
+  return found;
+}
+
 void write_knee_files(const KneeConfig& knee, const fs::path& dir)
 {
   KneeManifest manifest;
@@ -113,10 +122,11 @@ void build_knee(const KneeConfig& knee, const fs::path& dir, const std::string& 
                 RunSummary& summary)
 {
   ensure_directory(dir);
-  for (const LigamentConfig& ligament : knee.ligaments)
-    build_knee_ligament(knee, ligament, dir, target, force, summary);
+  const KneeConfig found = with_knee_anatomy(knee);
+  for (const LigamentConfig& ligament : found.ligaments)
+    build_knee_ligament(found, ligament, dir, target, force, summary);
   if (target == "model")
-    write_knee_files(knee, dir);
+    write_knee_files(found, dir);
 }
 
 } // namespace ligsim::pipeline

@@ -22,6 +22,10 @@ namespace ligsim::pipeline {
 void build_knee(const KneeConfig& knee, const std::filesystem::path& dir, const std::string& target,
                 bool force, RunSummary& summary);
 
+/// `knee` with its anatomy found once, from all its parts (knee_anatomy of its shared config),
+/// and given to every ligament (BuildConfig::anatomy.known), as build_knee builds it.
+KneeConfig with_knee_anatomy(const KneeConfig& knee);
+
 /// One ligament of `knee` as build_knee builds it: its stages in <dir>/<name>/ with its own
 /// summary.json, recorded in `summary` as "<name>/<stage>". Throws what the stages throw.
 void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,

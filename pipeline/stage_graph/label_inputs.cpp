@@ -35,6 +35,7 @@ nlohmann::json selection_json(const labelmap::Selection& s, const TriangleSurfac
           {"components", s.components},
           {"dropped_voxels", s.dropped_voxels},
           {"filled_hole_voxels", s.filled_hole_voxels},
+          {"contour", s.contour},
           {"surface_triangles", surface.F.rows()}};
 }
 
@@ -96,7 +97,14 @@ nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colo
     repair::Report repairs;
     try {
       const int label = labelmap::resolve_label(part.label, names, "label");
-      surface = labelmap::label_surface(image, label, &selection);
+      // A ligament's surface must not cross itself (it is refused if it does); a bone's is
+      // repaired into one shell and only ever seen from outside.
+      surface = labelmap::label_surface(image, label, &selection, 30, !part.bone);
+      if (selection.contour != "smoothed")
+        log_info(fmt::format("{}: the smoothed surface of label {} crossed itself ({}{} triangle "
+                             "pairs); made again as the half level of the blurred mask",
+                             part.name, label, selection.crossing_pairs >= 16 ? "at least " : "",
+                             selection.crossing_pairs));
       // Voxels joined only by an edge or a corner, and parts thinner than the smoothing keeps,
       // give a bone's surface several shells: contact needs one.
       if (part.bone) {

@@ -302,6 +302,8 @@ std::optional<sim::CondyleAxisFit> fit_condyles(const BuildConfig& config, const
 KneeAnatomy knee_anatomy(const BuildConfig& config)
 {
   const AnatomyInputs& given = config.anatomy;
+  if (given.known)
+    return *given.known;
   const Parts parts = read_parts(config);
   KneeAnatomy anatomy;
   anatomy.side = given.side;

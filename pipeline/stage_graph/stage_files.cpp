@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
 #include "stages/geometry/grid_vdb.hpp"
+#include "stages/geometry/surface_query.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/voxelize/level_set.hpp"
@@ -11,6 +12,8 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <limits>
 
 namespace ligsim::pipeline {
 
@@ -106,6 +109,28 @@ StoredAttachments load_attachments(const fs::path& dir)
       result.tibia.push_back(static_cast<int>(v));
   }
   return result;
+}
+
+void require_a_bone_nearby(const std::string& what, const TriangleSurface& ligament,
+                           const std::vector<std::pair<std::string, TriangleSurface>>& bones)
+{
+  // The atlas ligaments lie up to 2.5 mm off their bones; a label map's touch them.
+  constexpr double kReachMm = 5.0;
+  if (bones.empty())
+    return;
+  std::string distances;
+  for (const auto& [name, bone] : bones) {
+    const SurfaceQuery query(bone);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index v = 0; v < ligament.V.rows(); ++v)
+      nearest = std::min(nearest, query.distance(ligament.V.row(v).transpose()));
+    if (nearest <= kReachMm)
+      return;
+    distances += fmt::format("{}{} {:.1f} mm", distances.empty() ? "" : ", ", name, nearest);
+  }
+  fail("{} touches no bone: it lies farther than {:.0f} mm from each ({}); a ligament joins two "
+       "bones: check its label or surface",
+       what, kReachMm, distances);
 }
 
 } // namespace ligsim::pipeline

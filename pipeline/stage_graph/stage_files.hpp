@@ -47,6 +47,12 @@ TriangleSurface load_ligament(const BuildConfig& config,
 std::optional<TriangleSurface> load_bone(const std::filesystem::path& file,
                                          repair::Report* repairs = nullptr);
 
+/// Throws InputError when `ligament` lies farther than a few millimetres from every one of
+/// `bones` (name, surface): a ligament joins bones, and one touching none is mislabelled or
+/// cut off (the message gives its distance to each).
+void require_a_bone_nearby(const std::string& what, const TriangleSurface& ligament,
+                           const std::vector<std::pair<std::string, TriangleSurface>>& bones);
+
 /// The voxel images, read from the stages' .vdb files (sparse; the .vti files are for ParaView).
 Mask load_mask(const std::filesystem::path& dir);
 ScalarGrid load_distance(const std::filesystem::path& dir);

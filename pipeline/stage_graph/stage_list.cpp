@@ -30,6 +30,8 @@ std::vector<fs::path> none(const BuildConfig&)
 /// off.
 std::vector<fs::path> anatomy_inputs(const BuildConfig& c)
 {
+  if (c.anatomy.known)
+    return {}; // found by the knee's build, and part of the stage's parameters
   std::vector<fs::path> inputs;
   for (const std::string& surface :
        {c.anatomy.medial_epicondyle_surface, c.anatomy.lateral_epicondyle_surface})

@@ -109,12 +109,13 @@ BuiltModel build_model(const StudyModel& model, const fs::path& dir)
     ensure_directory(dir);
     // Ligament by ligament: one that cannot be built (a variant's surface that intersects
     // itself) fails alone, and the knee keeps the others.
-    pipeline::KneeConfig built_ones = model.config;
+    const pipeline::KneeConfig knee = pipeline::with_knee_anatomy(model.config);
+    pipeline::KneeConfig built_ones = knee;
     built_ones.ligaments.clear();
-    for (std::size_t l = 0; l < model.config.ligaments.size(); ++l) {
-      const pipeline::LigamentConfig& ligament = model.config.ligaments[l];
+    for (std::size_t l = 0; l < knee.ligaments.size(); ++l) {
+      const pipeline::LigamentConfig& ligament = knee.ligaments[l];
       try {
-        pipeline::build_knee_ligament(model.config, ligament, dir, "model", false, summary);
+        pipeline::build_knee_ligament(knee, ligament, dir, "model", false, summary);
         built_ones.ligaments.push_back(ligament);
       } catch (const Error& e) {
         built.ligaments[l].failure = e.what();

@@ -1,12 +1,17 @@
 #include "stages/labelmap/label_surface.hpp"
 
 #include "common/error.hpp"
+#include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
 #include "stages/io/vtk_convert.hpp"
 
+#include <vtkAlgorithmOutput.h>
 #include <vtkCleanPolyData.h>
 #include <vtkDiscreteFlyingEdges3D.h>
+#include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
 #include <vtkImageData.h>
+#include <vtkImageGaussianSmooth.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -138,17 +143,20 @@ std::vector<std::uint8_t> select_label(const LabelImage& image, int label, Selec
   return mask;
 }
 
-TriangleSurface label_surface(const LabelImage& image, int label, Selection* selection,
-                              int smoothing_iterations)
+namespace {
+
+/// The mask in index space with `pad` voxels of padding all round (so that the surface closes at
+/// the image border), as VTK image data of `T` values 0 and 1.
+template <class Array>
+vtkSmartPointer<vtkImageData> padded_volume(const LabelImage& image,
+                                            const std::vector<std::uint8_t>& mask, int pad)
 {
-  const std::vector<std::uint8_t> mask = select_label(image, label, selection);
-  // In index space with one voxel of padding, so the surface closes at the image border.
-  const Eigen::Vector3i dims = image.dims + Eigen::Vector3i::Constant(2);
+  const Eigen::Vector3i dims = image.dims + Eigen::Vector3i::Constant(2 * pad);
   auto volume = vtkSmartPointer<vtkImageData>::New();
   volume->SetDimensions(dims.x(), dims.y(), dims.z());
-  volume->SetOrigin(-1.0, -1.0, -1.0);
+  volume->SetOrigin(-pad, -pad, -pad);
   volume->SetSpacing(1.0, 1.0, 1.0);
-  auto values = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  auto values = vtkSmartPointer<Array>::New();
   values->SetName("label");
   values->SetNumberOfTuples(static_cast<vtkIdType>(dims.prod()));
   values->FillValue(0);
@@ -156,13 +164,97 @@ TriangleSurface label_surface(const LabelImage& image, int label, Selection* sel
     for (int j = 0; j < image.dims.y(); ++j)
       for (int i = 0; i < image.dims.x(); ++i)
         if (mask[image.index(i, j, k)])
-          values->SetValue((i + 1) + static_cast<vtkIdType>(dims.x()) *
-                                         ((j + 1) + static_cast<vtkIdType>(dims.y()) * (k + 1)),
+          values->SetValue((i + pad) +
+                               static_cast<vtkIdType>(dims.x()) *
+                                   ((j + pad) + static_cast<vtkIdType>(dims.y()) * (k + pad)),
                            1);
   volume->GetPointData()->SetScalars(values);
+  return volume;
+}
 
+/// Triangles of `polydata` (index space) in physical coordinates, facing outward.
+TriangleSurface physical_surface(vtkAlgorithmOutput* polydata, const LabelImage& image)
+{
+  auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
+  triangles->SetInputConnection(polydata);
+  auto clean = vtkSmartPointer<vtkCleanPolyData>::New();
+  clean->SetInputConnection(triangles->GetOutputPort());
+  clean->Update();
+  TriangleSurface surface = io::from_polydata(clean->GetOutput());
+  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+    surface.V.row(v) = image.physical_point(surface.V.row(v).transpose()).transpose();
+  if (signed_volume(surface) < 0.0)
+    surface.F.col(1).swap(surface.F.col(2));
+  return surface;
+}
+
+} // namespace
+
+TriangleSurface blurred_mask_surface(const LabelImage& image, const std::vector<std::uint8_t>& mask)
+{
+  // Sigma: one in-plane voxel, half a slice (and one voxel of an isotropic map), in voxels.
+  const double in_plane = image.spacing_mm.minCoeff(), slice = image.spacing_mm.maxCoeff();
+  auto blur = vtkSmartPointer<vtkImageGaussianSmooth>::New();
+  blur->SetInputData(padded_volume<vtkFloatArray>(image, mask, 3));
+  blur->SetDimensionality(3);
+  double sigma[3];
+  for (int a = 0; a < 3; ++a)
+    sigma[a] =
+        (image.spacing_mm[a] < slice ? image.spacing_mm[a] : std::max(in_plane, 0.5 * slice)) /
+        image.spacing_mm[a];
+  blur->SetStandardDeviations(sigma);
+  blur->SetRadiusFactors(3.0, 3.0, 3.0);
+  auto contour = vtkSmartPointer<vtkFlyingEdges3D>::New();
+  contour->SetInputConnection(blur->GetOutputPort());
+  contour->SetValue(0, 0.5);
+  contour->ComputeNormalsOff();
+  contour->ComputeGradientsOff();
+  contour->ComputeScalarsOff();
+  return physical_surface(contour->GetOutputPort(), image);
+}
+
+namespace {
+
+/// The part of `image` that holds `label`, with one voxel more all round where the image has it:
+/// the selection and the contour see the same voxels and holes, at the cost of the label's size
+/// rather than the map's (a whole-knee map is some 30 million voxels, a ligament's box 1 %).
+LabelImage cropped_to(const LabelImage& image, int label)
+{
+  Eigen::Vector3i lo = image.dims, hi = Eigen::Vector3i::Constant(-1);
+  for (int k = 0; k < image.dims.z(); ++k)
+    for (int j = 0; j < image.dims.y(); ++j)
+      for (int i = 0; i < image.dims.x(); ++i)
+        if (image(i, j, k) == label) {
+          lo = lo.cwiseMin(Eigen::Vector3i(i, j, k));
+          hi = hi.cwiseMax(Eigen::Vector3i(i, j, k));
+        }
+  if ((hi.array() < 0).any())
+    return image; // absent: select_label says so
+  lo = (lo - Eigen::Vector3i::Ones()).cwiseMax(0);
+  hi = (hi + Eigen::Vector3i::Ones()).cwiseMin(image.dims - Eigen::Vector3i::Ones());
+  LabelImage crop;
+  crop.dims = hi - lo + Eigen::Vector3i::Ones();
+  crop.spacing_mm = image.spacing_mm;
+  crop.direction = image.direction;
+  crop.origin_mm = image.physical_point(lo.cast<double>());
+  crop.labels.resize(static_cast<std::size_t>(crop.dims.prod()));
+  for (int k = 0; k < crop.dims.z(); ++k)
+    for (int j = 0; j < crop.dims.y(); ++j)
+      for (int i = 0; i < crop.dims.x(); ++i)
+        crop(i, j, k) = image(lo.x() + i, lo.y() + j, lo.z() + k);
+  return crop;
+}
+
+} // namespace
+
+TriangleSurface label_surface(const LabelImage& whole, int label, Selection* selection,
+                              int smoothing_iterations, bool never_crossing)
+{
+  const LabelImage image = cropped_to(whole, label);
+  Selection selected;
+  const std::vector<std::uint8_t> mask = select_label(image, label, &selected);
   auto contour = vtkSmartPointer<vtkDiscreteFlyingEdges3D>::New();
-  contour->SetInputData(volume);
+  contour->SetInputData(padded_volume<vtkUnsignedCharArray>(image, mask, 1));
   contour->SetValue(0, 1.0);
   contour->ComputeNormalsOff();
   contour->ComputeGradientsOff();
@@ -175,22 +267,22 @@ TriangleSurface label_surface(const LabelImage& image, int label, Selection* sel
   smooth->BoundarySmoothingOff();
   smooth->FeatureEdgeSmoothingOff();
   smooth->NonManifoldSmoothingOn();
-  auto triangles = vtkSmartPointer<vtkTriangleFilter>::New();
-  triangles->SetInputConnection(smoothing_iterations > 0 ? smooth->GetOutputPort()
-                                                         : contour->GetOutputPort());
-  auto clean = vtkSmartPointer<vtkCleanPolyData>::New();
-  clean->SetInputConnection(triangles->GetOutputPort());
-  clean->Update();
-
-  TriangleSurface surface = io::from_polydata(clean->GetOutput());
-  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
-    surface.V.row(v) = image.physical_point(surface.V.row(v).transpose()).transpose();
-  if (signed_volume(surface) < 0.0)
-    surface.F.col(1).swap(surface.F.col(2));
+  TriangleSurface surface = physical_surface(
+      smoothing_iterations > 0 ? smooth->GetOutputPort() : contour->GetOutputPort(), image);
   if (smoothing_iterations > 0) {
     const auto voxels = static_cast<double>(std::count(mask.begin(), mask.end(), 1));
     restore_volume(surface, voxels * image.spacing_mm.prod());
   }
+  if (never_crossing) {
+    const auto crossing = self_intersections(surface);
+    if (!crossing.empty()) {
+      selected.contour = "blurred";
+      selected.crossing_pairs = static_cast<int>(crossing.size());
+      surface = blurred_mask_surface(image, mask);
+    }
+  }
+  if (selection != nullptr)
+    *selection = selected;
   return surface;
 }
 

@@ -184,3 +184,70 @@ TEST(Footprints, PatchAndTheSideNextToTheBone)
   for (int v : side.tibia.vertices)
     EXPECT_LT(tube().surface.V(v, 0), -2.0);
 }
+
+TEST(Footprints, ALandmarkThatMissesTheLigamentSnapsToItsEnd)
+{
+  // The tube (radius 3 mm, z 0 to 30) and a landmark 9 mm off its side near its top.
+  attachments::Inputs inputs{&tube().surface, nullptr, nullptr, {}};
+  inputs.landmarks["medial_epicondyle"] = Eigen::Vector3d(12.0, 0.0, 26.0);
+  inputs.proximal = Eigen::Vector3d::UnitZ();
+  attachments::Rule femur, tibia;
+  femur.rule = "landmark";
+  femur.landmark = "medial_epicondyle";
+  femur.radius_mm = 2.0;
+  tibia.rule = "end";
+  EXPECT_THROW(attachments::find(inputs, femur, tibia), InputError); // the disc holds nothing
+  femur.snap = true;
+  const auto snapped = attachments::find(inputs, femur, tibia);
+  ASSERT_EQ(snapped.femur.corrections.size(), 1u);
+  EXPECT_NE(snapped.femur.corrections[0].find("missed the ligament by 9.0 mm"), std::string::npos)
+      << snapped.femur.corrections[0];
+  // The disc sits on the tube's +x side at the landmark's height, within the proximal end.
+  EXPECT_GT(snapped.femur.mean.x(), 1.5);
+  EXPECT_NEAR(snapped.femur.mean.z(), 26.0, 1.0);
+  for (int v : snapped.femur.vertices)
+    EXPECT_GT(tube().surface.V(v, 2), 30.0 - 3.0 * femur.radius_mm - femur.radius_mm - 1e-9);
+
+  // Held to its published place: 9 mm away is refused when 5 mm is the most it may be.
+  femur.max_distance_mm = 5.0;
+  try {
+    attachments::find(inputs, femur, tibia);
+    FAIL() << "a footprint 9 mm from its landmark was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("farther than the 5.0 mm"), std::string::npos) << e.what();
+  }
+
+  // No such landmark in the anatomy: the ligament's end toward the femur, said so.
+  inputs.landmarks.clear();
+  femur.max_distance_mm = 0.0;
+  const auto end = attachments::find(inputs, femur, tibia);
+  EXPECT_GT(end.femur.mean.z(), 27.0);
+  ASSERT_EQ(end.femur.corrections.size(), 1u);
+  EXPECT_NE(end.femur.corrections[0].find("no medial_epicondyle"), std::string::npos);
+}
+
+TEST(Footprints, AFootprintLargerThanItsPublishedBoundShrinksOrIsRefused)
+{
+  attachments::Inputs inputs{&tube().surface, nullptr, nullptr, {}};
+  inputs.landmarks["lateral_epicondyle"] = Eigen::Vector3d(3.0, 0.0, 20.0);
+  attachments::Rule femur, tibia;
+  femur.rule = "landmark";
+  femur.landmark = "lateral_epicondyle";
+  femur.radius_mm = 4.0;
+  tibia.rule = "end";
+  const double whole = attachments::find(inputs, femur, tibia).femur.area_mm2;
+  femur.max_area_mm2 = 0.5 * whole;
+  const auto held = attachments::find(inputs, femur, tibia);
+  EXPECT_LE(held.femur.area_mm2, 0.5 * whole);
+  EXPECT_GT(held.femur.area_mm2, 0.25 * whole); // shrunk by tenths of the radius, not more
+  ASSERT_FALSE(held.femur.corrections.empty());
+  EXPECT_NE(held.femur.corrections.back().find("shrunk from 4"), std::string::npos);
+  // A rule without a disc cannot shrink: refused, saying what to give.
+  tibia.max_area_mm2 = 1.0;
+  try {
+    attachments::find(inputs, femur, tibia);
+    FAIL() << "an end larger than its bound was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the 1 mm^2"), std::string::npos) << e.what();
+  }
+}

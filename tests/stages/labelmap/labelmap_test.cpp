@@ -3,6 +3,7 @@
 // holes, and the surface lands on the analytic cylinder in physical coordinates.
 
 #include "common/error.hpp"
+#include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
 #include "stages/labelmap/label_image.hpp"
 #include "stages/labelmap/label_surface.hpp"
@@ -158,4 +159,36 @@ TEST(LabelImage, HeadersThatWouldHangOrExhaustItkAreClearErrors)
             std::string::npos);
   EXPECT_EQ(error_of("fine.mha", "ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\n"), "no error");
   fs::remove_all(dir);
+}
+
+TEST(LabelImage, TheBlurredMasksSurfaceIsClosedAndNeverCrossesItself)
+{
+  // The fallback for a smoothed surface that crossed itself: the half level of the mask
+  // blurred, contoured as it is. On the cylinder, in its rotated 0.3 x 0.3 x 1 mm frame, and on
+  // two blocks that touch only along an edge (one 26-connected piece), where flying edges on the
+  // bare labels would give a non-manifold edge.
+  for (const bool edge_joined : {false, true}) {
+    LabelImage image = cylinder_image();
+    if (edge_joined)
+      for (int k = 0; k < image.dims.z(); ++k)
+        for (int j = 0; j < image.dims.y(); ++j)
+          for (int i = 0; i < image.dims.x(); ++i)
+            image(i, j, k) = (j >= 6 && j < 30 &&
+                              ((i >= 10 && i < 40 && k >= 2 && k < 6) ||
+                               (i >= 40 && i < 70 && k >= 6 && k < 10)))
+                                 ? kCylinder
+                                 : 0;
+    Selection selection;
+    const std::vector<std::uint8_t> mask = select_label(image, kCylinder, &selection);
+    const TriangleSurface surface = blurred_mask_surface(image, mask);
+    const TopologyReport topology = check_topology(surface);
+    EXPECT_TRUE(topology.closed_manifold()) << edge_joined;
+    EXPECT_TRUE(self_intersections(surface, 1).empty()) << edge_joined;
+    EXPECT_GT(signed_volume(surface), 0.0) << edge_joined; // outward
+    if (!edge_joined) {
+      // The cylinder's volume within the blur's rounding of its rims. Measured: 2.7 % under.
+      const double voxels = static_cast<double>(selection.voxels) * image.spacing_mm.prod();
+      EXPECT_NEAR(signed_volume(surface), voxels, 0.03 * voxels);
+    }
+  }
 }
