@@ -337,6 +337,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   // Check every input before the stages run, so bad input leaves nothing behind (surfaces from
   // a label map are written only once all of them could be made).
   nlohmann::json label_report;
+  std::string defaults_by_name;
   BuildConfig config;
   repair::Report repairs, femur_repairs, tibia_repairs;
   try {
@@ -344,12 +345,16 @@ void run_build_job(const BuildOptions& o, const std::string& target)
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
     if (!label_report.is_null())
       label_report["wall_s"] = label_meter.wall_s(); // reading the map, surfaces, writing them
+    if (config.labels.empty())
+      config.ligament_part = pipeline::part_of_surface(config.surface);
     if (!config.ligament_part.empty()) {
       config.anatomy.parts[config.ligament_part] = config.surface;
       const std::string used = pipeline::apply_part_defaults(config);
       if (!used.empty()) {
-        log_info(fmt::format("the ligament's label names the {}: {}", config.ligament_part, used));
-        label_report["ligament"]["defaults_by_name"] = used;
+        log_info(fmt::format("the ligament's {} names the {}: {}",
+                             config.labels.empty() ? "surface" : "label", config.ligament_part,
+                             used));
+        defaults_by_name = used;
       }
     }
     const TriangleSurface ligament = pipeline::load_ligament(config, nullptr, &repairs);
@@ -386,6 +391,9 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   summary.results()["bone_repair"] = bone_repair;
   if (!label_report.is_null())
     summary.results()["label_map"] = label_report;
+  if (!defaults_by_name.empty())
+    summary.results()["defaults_by_name"] = {{"ligament", config.ligament_part},
+                                             {"used", defaults_by_name}};
   try {
     pipeline::run_target(config, out, target, o.force, summary);
   } catch (const Error&) {

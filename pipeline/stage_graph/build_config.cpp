@@ -4,6 +4,8 @@
 #include "pipeline/stage_graph/config_fields.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
 #include "pipeline/stage_graph/ligament_defaults.hpp"
+#include "stages/anatomy/part_names.hpp"
+#include "stages/io/surface_path.hpp"
 
 namespace ligsim::pipeline {
 
@@ -140,6 +142,14 @@ BuildConfig load_build_config(const fs::path& file)
       if (attachments->contains(bone))
         config.given.insert(std::string("attachments.") + bone);
   return config;
+}
+
+std::string part_of_surface(const fs::path& surface)
+{
+  const io::SurfacePath source = io::split_surface_path(surface);
+  const std::string name = source.mesh.empty() ? source.file.stem().string() : source.mesh;
+  const auto part = anatomy::recognise_part(name);
+  return part && anatomy::is_ligament(*part) ? anatomy::part_name(*part) : "";
 }
 
 std::string apply_part_defaults(BuildConfig& config)

@@ -104,6 +104,10 @@ struct BuildConfig {
   std::set<std::string> given;
 };
 
+/// The ligament part a surface path names, by its glTF mesh name (`knee.glb#VH_F_left_tibial_
+/// collateral_ligament`) or else its file's stem: "MCL", "LCL", "ACL", "PCL", or "" (not one).
+std::string part_of_surface(const std::filesystem::path& surface);
+
 /// Fills what `config.given` lacks with the defaults of `config.ligament_part` (material,
 /// footprints); returns where they come from, or nothing when the part has none.
 std::string apply_part_defaults(BuildConfig& config);

@@ -241,9 +241,9 @@ TEST(KneeFromLabels, ALigamentsLabelNameGivesItsDefaultsInAOneLigamentBuild)
                                      "femur --tibia-label tibia --out " +
                                      out.string() + " --cell-size 1.5 --no-images");
   ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
-  const nlohmann::json label = read_json(out / "summary.json")["results"]["label_map"];
-  EXPECT_NE(label["ligament"]["defaults_by_name"].get<std::string>().find("Gardiner & Weiss"),
-            std::string::npos);
+  const nlohmann::json defaults = read_json(out / "summary.json")["results"]["defaults_by_name"];
+  EXPECT_EQ(defaults["ligament"], "MCL");
+  EXPECT_NE(defaults["used"].get<std::string>().find("Gardiner & Weiss"), std::string::npos);
   // The human MCL's material (mu = 2 C1 = 2.88 MPa), not the ligament paper's 27.7 MPa, and its
   // femoral footprint at the epicondyle the anatomy found.
   EXPECT_NE(read_text(out / "scene.toml").find("2.88"), std::string::npos);
