@@ -1,0 +1,75 @@
+#include "sim/solver/condensed_stiffness.hpp"
+
+#include "common/error.hpp"
+#include "sim/solver/linear_solver.hpp"
+
+#include <vector>
+
+namespace ligsim::sim {
+
+Eigen::VectorXd apply_stiffness(const HyperelasticBody& body, const Eigen::VectorXd& x,
+                                const Eigen::VectorXd& d)
+{
+  const Tetrahedra& T = body.mesh().T;
+  std::vector<Matrix12d> H(static_cast<std::size_t>(T.rows()));
+  body.element_hessians(x, 0, T.rows(), false, H.data());
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(d.size());
+  for (Eigen::Index e = 0; e < T.rows(); ++e) {
+    Eigen::Matrix<double, 12, 1> local;
+    for (int a = 0; a < 4; ++a)
+      local.segment<3>(3 * a) = d.segment<3>(3 * T(e, a));
+    const Eigen::Matrix<double, 12, 1> product = H[static_cast<std::size_t>(e)] * local;
+    for (int a = 0; a < 4; ++a)
+      y.segment<3>(3 * T(e, a)) += product.segment<3>(3 * a);
+  }
+  return y;
+}
+
+CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
+                                       const BoundaryConditions& conditions,
+                                       const Eigen::VectorXd& x, const ExtraPotential* extra,
+                                       double t, const Eigen::MatrixXd& D)
+{
+  const DofPartition dofs(body.node_count(), conditions, body.unreferenced_nodes());
+  const Eigen::Index m = D.cols();
+  // The prescribed part of each motion, and K d for it.
+  Eigen::MatrixXd prescribed = Eigen::MatrixXd::Zero(D.rows(), m);
+  for (int dof = 0; dof < dofs.dof_count(); ++dof)
+    if (!dofs.is_free(dof))
+      prescribed.row(dof) = D.row(dof);
+  Eigen::MatrixXd KD(D.rows(), m);
+  for (Eigen::Index k = 0; k < m; ++k)
+    KD.col(k) = apply_stiffness(body, x, prescribed.col(k));
+  Eigen::MatrixXd free_part(dofs.free_count(), m);
+  for (int f = 0; f < dofs.free_count(); ++f)
+    free_part.row(f) = KD.row(dofs.free_dofs()[static_cast<std::size_t>(f)]);
+
+  CondensedStiffness result;
+  result.matrix = prescribed.transpose() * KD;
+  std::vector<NodeBlock> blocks;
+  StiffnessSolver solver(body, dofs, LinearSolverKind::direct, PcgSettings{});
+  for (const bool project : {false, true}) {
+    if (extra != nullptr)
+      extra->hessian_blocks(x, t, project, blocks);
+    solver.prepare(x, project, 1.0, Eigen::VectorXd(), blocks);
+    Eigen::MatrixXd U(dofs.free_count(), m);
+    bool ok = true;
+    for (Eigen::Index k = 0; k < m && ok; ++k) {
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs.free_count());
+      const LinearSolveReport report = solver.solve(free_part.col(k), u);
+      ok = report.ok && !report.indefinite;
+      U.col(k) = u;
+    }
+    if (!ok)
+      continue;
+    if (project)
+      result.factor = "projected";
+    result.matrix -= free_part.transpose() * U;
+    result.matrix = 0.5 * (result.matrix + result.matrix.transpose()).eval();
+    return result;
+  }
+  fail<SolverError>("condensed stiffness: the free stiffness cannot be factorised, even "
+                    "projected to positive semi-definite");
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,89 @@
+/// The stiffness a body shows at its prescribed DOFs once its free ones re-equilibrate: the
+/// Schur complement along two motions of a cube's top face (a stretch and a shear), against
+/// central differences of the reactions of equilibria solved with the top moved.
+
+#include "sim/mesh/node_selection.hpp"
+#include "sim/mesh/structured_mesh.hpp"
+#include "sim/solver/condensed_stiffness.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ligsim::sim;
+
+namespace {
+
+struct TopMoved {
+  BoundaryConditions conditions;
+  std::vector<int> top;
+};
+
+/// Bottom fixed, top moved by `move` (mm) at load factor 1.
+TopMoved cube_with_top(const ligsim::TetMesh& mesh, const Eigen::Vector3d& move)
+{
+  TopMoved c;
+  ConstraintSet bottom;
+  bottom.name = "bottom";
+  bottom.nodes = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
+  ConstraintSet top;
+  top.name = "top";
+  top.nodes = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
+  top.displacement_mm = move;
+  c.top = top.nodes;
+  c.conditions.constraints = {bottom, top};
+  return c;
+}
+
+/// The equilibrium with the top moved by `move`, and its reaction residual.
+Eigen::VectorXd reactions(const HyperelasticBody& body, const Eigen::Vector3d& move,
+                          Eigen::VectorXd* x_out = nullptr)
+{
+  const TopMoved c = cube_with_top(body.mesh(), move);
+  NewtonSettings settings;
+  settings.load_steps = 4;
+  settings.residual_tolerance = 1e-12;
+  StaticSolver solver(body, c.conditions, settings);
+  Eigen::VectorXd x = body.rest_positions(), residual;
+  const StaticResult result = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd& r) { residual = r; });
+  EXPECT_TRUE(result.converged) << result.failure;
+  if (x_out)
+    *x_out = x;
+  return residual;
+}
+
+} // namespace
+
+TEST(CondensedStiffness, ItIsTheDerivativeOfTheReactionsOnceTheBodyReequilibrates)
+{
+  FiberField fiber(1, 3);
+  fiber << 0.3, 0.0, 1.0;
+  const HyperelasticBody body(structured_box_mesh({3, 3, 3}, {1.0, 1.0, 1.0}), mcl_material(),
+                              fiber);
+  // A stretched and sheared state, where the stiffness is not the rest one.
+  const Eigen::Vector3d base(0.02, 0.0, 0.06);
+  Eigen::VectorXd x;
+  reactions(body, base, &x);
+  const TopMoved c = cube_with_top(body.mesh(), base);
+  // The two motions: the top stretched along z and sheared along x.
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(body.dof_count(), 2);
+  for (int n : c.top) {
+    D(3 * n + 2, 0) = 1.0;
+    D(3 * n + 0, 1) = 1.0;
+  }
+  const CondensedStiffness S = condensed_stiffness(body, c.conditions, x, nullptr, 1.0, D);
+  EXPECT_EQ(S.factor, "exact");
+  const double h = 1e-5;
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d step = k == 0 ? Eigen::Vector3d(0, 0, h) : Eigen::Vector3d(h, 0, 0);
+    const Eigen::VectorXd plus = reactions(body, base + step), minus = reactions(body, base - step);
+    for (int l = 0; l < 2; ++l) {
+      const double numeric = D.col(l).dot(plus - minus) / (2.0 * h);
+      EXPECT_NEAR(S.matrix(l, k), numeric, 1e-5 * std::abs(numeric) + 1e-6) << l << " " << k;
+    }
+  }
+  // Symmetric and positive: pulling the top costs energy.
+  EXPECT_NEAR(S.matrix(0, 1), S.matrix(1, 0), 1e-9 * S.matrix.norm());
+  EXPECT_GT(S.matrix(0, 0), 0.0);
+  EXPECT_GT(S.matrix(1, 1), 0.0);
+}
