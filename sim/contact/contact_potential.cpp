@@ -138,9 +138,12 @@ double ContactPotential::distance(std::size_t o, const Eigen::Vector3d& p, doubl
 }
 
 template <class Visit>
-bool ContactPotential::for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit) const
+bool ContactPotential::for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit,
+                                          std::size_t only) const
 {
   for (std::size_t o = 0; o < m_obstacles.size(); ++o) {
+    if (only != static_cast<std::size_t>(-1) && o != only)
+      continue;
     const Pose at = pose(o, t);
     const double off = offset(o, t);
     for (std::size_t i = 0; i < m_pairs[o].size(); ++i) {
@@ -173,6 +176,31 @@ double ContactPotential::energy(const Eigen::VectorXd& x, double t, Eigen::Vecto
         return true;
       });
   return finite ? total : INFINITY;
+}
+
+std::vector<ContactPotential::NodeTerm>
+ContactPotential::node_terms(std::size_t o, const Eigen::VectorXd& x, double t) const
+{
+  const double kappa = m_settings.stiffness_mpa_per_mm;
+  std::vector<NodeTerm> terms;
+  for_each_near_pair(
+      x, t,
+      [&](const Pair& pair, const Pose& at, const DistanceSample& s, const BarrierValue& b) {
+        if (b.second == 0.0 && b.first == 0.0)
+          return true;
+        const Eigen::Vector3d g = at.rotation * s.gradient;
+        NodeTerm term;
+        term.node = pair.node;
+        term.gradient = kappa * pair.area * b.first * g;
+        term.hessian = kappa * pair.area *
+                       (b.second * g * g.transpose() +
+                        b.first * (at.rotation * s.hessian * at.rotation.transpose()));
+        term.local_mm = at.to_local(x.segment<3>(3 * pair.node));
+        terms.push_back(term);
+        return true;
+      },
+      o);
+  return terms;
 }
 
 void ContactPotential::hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,

@@ -63,6 +63,18 @@ public:
 
   ContactMeasures measure(const Eigen::VectorXd& x, double t) const;
 
+  /// One node's barrier term of one obstacle: its gradient (world, N) and its exact Hessian block
+  /// (world, N/mm), and where the node lies in the obstacle's rest frame (mm).
+  struct NodeTerm {
+    int node = 0;
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d local_mm = Eigen::Vector3d::Zero();
+  };
+  /// The nodes obstacle o's barrier acts on at (x, t), with their terms: what the obstacle's own
+  /// motion couples to (a moving bone's reaction and its derivatives).
+  std::vector<NodeTerm> node_terms(std::size_t o, const Eigen::VectorXd& x, double t) const;
+
   const ContactSettings& settings() const { return m_settings; }
   const std::vector<ContactObstacle>& obstacles() const { return m_obstacles; }
   /// The signed distance of point `p` (world, mm) to obstacle o at load factor t (with its
@@ -119,8 +131,10 @@ private:
   const DistanceSample& pair_sample(std::size_t o, std::size_t i, const Eigen::Vector3d& p) const;
   /// Calls `visit(pair, pose, sample, barrier)` for every pair that may be within d_hat of its
   /// obstacle at (x, t); stops and returns false as soon as `visit` returns false.
+  /// Only obstacle `only` when it is not npos.
   template <class Visit>
-  bool for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit) const;
+  bool for_each_near_pair(const Eigen::VectorXd& x, double t, Visit&& visit,
+                          std::size_t only = static_cast<std::size_t>(-1)) const;
 
   int m_node_count = 0;
   std::vector<ContactObstacle> m_obstacles;

@@ -28,7 +28,8 @@ Eigen::VectorXd apply_stiffness(const HyperelasticBody& body, const Eigen::Vecto
 CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
                                        const BoundaryConditions& conditions,
                                        const Eigen::VectorXd& x, const ExtraPotential* extra,
-                                       double t, const Eigen::MatrixXd& D)
+                                       double t, const Eigen::MatrixXd& D,
+                                       const Eigen::MatrixXd* coupling)
 {
   const DofPartition dofs(body.node_count(), conditions, body.unreferenced_nodes());
   const Eigen::Index m = D.cols();
@@ -41,8 +42,12 @@ CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
   for (Eigen::Index k = 0; k < m; ++k)
     KD.col(k) = apply_stiffness(body, x, prescribed.col(k));
   Eigen::MatrixXd free_part(dofs.free_count(), m);
-  for (int f = 0; f < dofs.free_count(); ++f)
-    free_part.row(f) = KD.row(dofs.free_dofs()[static_cast<std::size_t>(f)]);
+  for (int f = 0; f < dofs.free_count(); ++f) {
+    const int dof = dofs.free_dofs()[static_cast<std::size_t>(f)];
+    free_part.row(f) = KD.row(dof);
+    if (coupling != nullptr)
+      free_part.row(f) += coupling->row(dof);
+  }
 
   CondensedStiffness result;
   result.matrix = prescribed.transpose() * KD;

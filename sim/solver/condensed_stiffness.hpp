@@ -28,11 +28,14 @@ struct CondensedStiffness {
 
 /// D^T S D at the equilibrium x of `body` in `conditions` (the free DOFs those leave), with the
 /// extra potential (may be null) at load factor t in K_ff. D: #DOF x m, each column a motion of
-/// the prescribed DOFs (its free entries are ignored). Throws SolverError when K_ff cannot be
-/// factorised even projected.
+/// the prescribed DOFs (its free entries are ignored). `coupling` (#DOF x m, its free rows used;
+/// may be null) adds to K_fp D what else the motions pull the free DOFs with (a moving obstacle's
+/// mixed derivatives): the result is then D^T K_pp D - B^T K_ff^-1 B with B = K_fp D + coupling.
+/// Throws SolverError when K_ff cannot be factorised even projected.
 CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
                                        const BoundaryConditions& conditions,
                                        const Eigen::VectorXd& x, const ExtraPotential* extra,
-                                       double t, const Eigen::MatrixXd& D);
+                                       double t, const Eigen::MatrixXd& D,
+                                       const Eigen::MatrixXd* coupling = nullptr);
 
 } // namespace ligsim::sim

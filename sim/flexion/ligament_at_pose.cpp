@@ -1,0 +1,148 @@
+#include "sim/flexion/ligament_at_pose.hpp"
+
+#include "common/error.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+#include "sim/solver/condensed_stiffness.hpp"
+
+namespace ligsim::sim {
+
+namespace {
+
+constexpr std::size_t kFemurSet = 1; // knee_conditions: "tibia", then "femur"
+
+} // namespace
+
+LigamentAtPose::LigamentAtPose(const LigamentModel& ligament, const FlexionSettings& settings,
+                               const JointCoordinateSystem& jcs,
+                               const std::filesystem::path& contact_cache)
+    : m_name(ligament.name)
+    , m_ligament(ligament)
+    , m_settings(settings)
+    , m_jcs(jcs)
+    , m_segment(std::make_shared<PoseSegment>(jcs))
+{
+  const KneeModel& model = ligament.model;
+  RigidMotion motion;
+  motion.path = m_segment;
+  m_conditions = knee_conditions(model, motion);
+  m_contact = std::make_unique<KneeContact>(model, m_conditions, settings.contact, contact_cache);
+  m_contact_on = settings.contact.enabled.value_or(true);
+  const auto& obstacles = m_contact->potential().obstacles();
+  for (std::size_t o = 0; o < obstacles.size(); ++o)
+    if (obstacles[o].name == "femur")
+      m_femur_obstacle = static_cast<int>(o);
+  m_body.emplace(model.mesh, settings.material,
+                 prestretched_fibers(model, settings.in_situ_strain));
+  m_x = m_body->rest_positions();
+}
+
+void LigamentAtPose::make_solver()
+{
+  NewtonSettings newton = m_settings.newton;
+  newton.load_factors = {1.0};
+  m_solver = std::make_unique<StaticSolver>(*m_body, m_conditions, newton);
+  if (m_contact_on)
+    m_solver->set_extra_potential(&m_contact->potential());
+}
+
+bool LigamentAtPose::settle()
+{
+  if (m_contact_on) {
+    try {
+      if (m_settings.contact.reshape_overlap) {
+        const OverlapReport overlap = reshape_initial_overlap(
+            *m_body, m_settings.material, m_conditions, *m_contact, m_settings.newton, m_x);
+        if (overlap.reshaped) {
+          HyperelasticBody reshaped = with_rest_shape(*m_body, m_settings.material, m_x);
+          m_body.emplace(std::move(reshaped));
+        }
+      } else {
+        resolve_initial_overlap(*m_body, m_conditions, *m_contact, m_settings.newton, m_x);
+      }
+    } catch (const SolverError& e) {
+      m_failure = fmt::format("{}: pushing it out of the bones: {}", m_name, e.what());
+      return false;
+    }
+  }
+  make_solver();
+  return move_to(m_pose);
+}
+
+bool LigamentAtPose::move_to(const JointPose& pose)
+{
+  m_segment->set(m_pose, pose);
+  const Eigen::VectorXd saved = m_x;
+  Eigen::VectorXd residual;
+  const StaticResult result = m_solver->solve(m_x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                       const Eigen::VectorXd& r) { residual = r; });
+  if (!result.converged) {
+    m_x = saved;
+    m_segment->set(m_pose, m_pose);
+    m_failure = fmt::format("{}: {}", m_name, result.failure);
+    return false;
+  }
+  m_pose = pose;
+  m_segment->set(pose, pose);
+  m_residual = residual;
+  return true;
+}
+
+double LigamentAtPose::energy() const
+{
+  double e = m_body->energy(m_x).energy;
+  if (m_contact_on)
+    e += m_contact->potential().energy(m_x, 1.0, nullptr);
+  return e;
+}
+
+Vector5d LigamentAtPose::generalized_force(const FreePose& pose) const
+{
+  Vector5d g = Vector5d::Zero();
+  const Points& rest = m_body->mesh().V;
+  for (int n : m_conditions.constraints[kFemurSet].nodes)
+    g += pose.jacobian(rest.row(n).transpose()).transpose() * m_residual.segment<3>(3 * n);
+  if (m_contact_on && m_femur_obstacle >= 0)
+    for (const ContactPotential::NodeTerm& term :
+         m_contact->potential().node_terms(static_cast<std::size_t>(m_femur_obstacle), m_x, 1.0))
+      g -= pose.jacobian(term.local_mm).transpose() * term.gradient;
+  return g;
+}
+
+Matrix5d LigamentAtPose::stiffness(const FreePose& pose) const
+{
+  const Points& rest = m_body->mesh().V;
+  const int dofs = m_body->dof_count();
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(dofs, 5), coupling = Eigen::MatrixXd::Zero(dofs, 5);
+  Matrix5d curvature = Matrix5d::Zero();
+  for (int n : m_conditions.constraints[kFemurSet].nodes) {
+    const Eigen::Vector3d X = rest.row(n).transpose();
+    D.block<3, 5>(3 * n, 0) = pose.jacobian(X);
+    curvature += pose.weighted_second(X, m_residual.segment<3>(3 * n));
+  }
+  if (m_contact_on && m_femur_obstacle >= 0)
+    for (const ContactPotential::NodeTerm& term :
+         m_contact->potential().node_terms(static_cast<std::size_t>(m_femur_obstacle), m_x, 1.0)) {
+      const Matrix35d J = pose.jacobian(term.local_mm);
+      coupling.block<3, 5>(3 * term.node, 0) -= term.hessian * J;
+      curvature += J.transpose() * term.hessian * J;
+    }
+  const CondensedStiffness S =
+      condensed_stiffness(*m_body, m_conditions, m_x,
+                          m_contact_on ? &m_contact->potential() : nullptr, 1.0, D, &coupling);
+  Matrix5d K = S.matrix + curvature;
+  return 0.5 * (K + K.transpose());
+}
+
+Eigen::Vector3d LigamentAtPose::femur_force() const
+{
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (int n : m_conditions.constraints[kFemurSet].nodes)
+    force += m_residual.segment<3>(3 * n);
+  if (m_contact_on && m_femur_obstacle >= 0)
+    for (const ContactPotential::NodeTerm& term :
+         m_contact->potential().node_terms(static_cast<std::size_t>(m_femur_obstacle), m_x, 1.0))
+      force -= term.gradient; // the barrier's force on the node: -dE/dx
+  return force;
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,73 @@
+#pragma once
+/// @brief One ligament held by a femur whose pose a solver chooses: its equilibrium with the
+/// femoral footprint carried by the femur (and the femur's contact with it), solved again from
+/// its last state whenever the pose moves; and what the femur feels of it in the knee's five free
+/// coordinates: the generalized force (the footprint's reaction and the contact's, on the femur)
+/// and the stiffness with the ligament's nodes eliminated (the Schur complement of its tangent).
+///
+/// The stiffness is exact for the ligament's elasticity and the footprint's motion; of the
+/// ligament-femur contact it keeps the barrier's curvature along the motion and leaves out its
+/// gradient times the motion's own curvature (a Gauss-Newton term: small where the contact
+/// force is small against the footprint's).
+
+#include "sim/flexion/flexion_settings.hpp"
+#include "sim/flexion/initial_overlap.hpp"
+#include "sim/flexion/knee_contact.hpp"
+#include "sim/flexion/knee_model.hpp"
+#include "sim/kinematics/free_pose.hpp"
+#include "sim/kinematics/pose_segment.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
+#include "sim/solver/static_solver.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace ligsim::sim {
+
+class LigamentAtPose {
+public:
+  /// `settings`: the ligament's own (ligament_settings), quasi-static.
+  LigamentAtPose(const LigamentModel& ligament, const FlexionSettings& settings,
+                 const JointCoordinateSystem& jcs, const std::filesystem::path& contact_cache);
+
+  const std::string& name() const { return m_name; }
+  /// Pushes the ligament out of the bones as the sweep does ([contact] initial_overlap) and
+  /// settles it at the built pose; false when that fails (failure() says why).
+  bool settle();
+  /// Moves the femur from the current pose to `pose` and finds the equilibrium there; false when
+  /// it cannot, leaving the last equilibrium and its pose.
+  bool move_to(const JointPose& pose);
+  const JointPose& pose() const { return m_pose; }
+  const std::string& failure() const { return m_failure; }
+
+  /// Strain energy and contact barrier at the current equilibrium, N mm.
+  double energy() const;
+  /// d(energy)/dq at the current equilibrium (its nodes held there: they are in equilibrium).
+  Vector5d generalized_force(const FreePose& pose) const;
+  /// d^2(energy)/dq^2 with the nodes re-equilibrating (see above).
+  Matrix5d stiffness(const FreePose& pose) const;
+  /// What the femur exerts on the ligament: its footprint's reaction and its contact, N.
+  Eigen::Vector3d femur_force() const;
+
+private:
+  void make_solver();
+
+  std::string m_name;
+  LigamentModel m_ligament;
+  FlexionSettings m_settings;
+  JointCoordinateSystem m_jcs;
+  std::shared_ptr<PoseSegment> m_segment;
+  BoundaryConditions m_conditions;
+  std::unique_ptr<KneeContact> m_contact;
+  bool m_contact_on = true;
+  std::optional<HyperelasticBody> m_body;
+  std::unique_ptr<StaticSolver> m_solver;
+  Eigen::VectorXd m_x, m_residual;
+  JointPose m_pose;
+  int m_femur_obstacle = -1; ///< the femur's index among the contact's obstacles (-1: none)
+  std::string m_failure;
+};
+
+} // namespace ligsim::sim
