@@ -8,6 +8,7 @@
 #include "common/run_summary.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/flexion_pictures.hpp"
+#include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/flexion/knee_pictures.hpp"
 #include "sim/flexion/knee_sweep.hpp"
@@ -198,6 +199,21 @@ void print_table(const std::vector<sim::LigamentSweep>& sweeps,
     }());
 }
 
+/// The knee's free path, one line per angle.
+void log_free_path(const sim::FreeFemurResult& found)
+{
+  for (const sim::FreeAngle& at : found.angles)
+    log_info(fmt::format(
+        "free knee at {} deg: varus {:.2f} deg, internal rotation {:.2f} deg, "
+        "anterior {:.2f} mm, medial {:.2f} mm, proximal {:.2f} mm; contact {:.1f} N "
+        "medial, {:.1f} N lateral; residual {:.2g} N, {:.2g} N mm ({} iterations, "
+        "{:.1f} s)",
+        sim::angle_label(at.angle_deg), at.pose.varus_deg, at.pose.internal_rotation_deg,
+        at.pose.anterior_mm, -at.pose.lateral_mm, at.pose.proximal_mm,
+        at.articular.medial_force_n.norm(), at.articular.lateral_force_n.norm(),
+        at.residual_force_n, at.residual_moment_nmm, at.iterations, at.wall_s));
+}
+
 void run_flexion(const FlexionJobOptions& options)
 {
   RunSummary summary("flexion");
@@ -216,7 +232,26 @@ void run_flexion(const FlexionJobOptions& options)
     names.push_back(ligament.name);
   // The ligaments share the bones and the anatomy: the motion comes from any of them.
   const sim::KneeModel& bones = ligaments.front().model;
-  const sim::KneeMotion motion = sim::resolve_knee_motion(bones, settings);
+  if (settings.motion.path == sim::MotionSettings::Path::automatic &&
+      sim::flexes_free_by_default(ligaments)) {
+    settings.motion.path = sim::MotionSettings::Path::free;
+    log_info("flexion: the knee has both collaterals and both cruciates: the femur is free in its "
+             "five other coordinates ([motion] path = \"free\")");
+  }
+  sim::KneeMotion motion = sim::resolve_knee_motion(bones, settings);
+  // The knee finds its own path first; the sweep then follows it as any path.
+  std::optional<sim::FreeFlexion> free;
+  if (settings.motion.path == sim::MotionSettings::Path::free) {
+    StageMeter free_meter;
+    free = sim::find_free_flexion(ligaments, motion, settings, settings.model_dir / "contact");
+    summary.add_stage("free_path", free_meter, {{"success", free->found.success}});
+    if (!free->found.success && free->motion.angles_deg == motion.angles_deg)
+      fail<SolverError>("flexion with the femur free: {}", free->found.failure);
+    if (!free->found.success)
+      log_info("flexion with the femur free stopped: " + free->found.failure +
+               "; the sweep covers the angles it reached");
+    motion = free->motion;
+  }
   record_parameters(settings, motion, summary);
   summary.parameters()["ligaments"] = names;
   log_motion(motion);
@@ -230,6 +265,11 @@ void run_flexion(const FlexionJobOptions& options)
   summary.add_stage("setup", setup_meter, {{"ligaments", names}});
 
   ensure_directory(options.out);
+  if (free) {
+    sim::write_kinematics_csv(free->found, motion.jcs, options.out / "kinematics.csv");
+    summary.results()["free"] = sim::to_json(free->found, motion.jcs);
+    log_free_path(free->found);
+  }
   std::vector<sim::OutputLigament> parts;
   for (const sim::LigamentModel& ligament : ligaments)
     parts.push_back({ligament.name, knee ? ligament.name : "", ligament.model.distal_bone});

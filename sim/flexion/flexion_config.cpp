@@ -54,9 +54,12 @@ void read_motion(TomlTable& table, const fs::path& base, MotionSettings& motion)
     motion.path = MotionSettings::Path::passive;
   else if (path == "table")
     motion.path = MotionSettings::Path::table;
+  else if (path == "free")
+    motion.path = MotionSettings::Path::free;
   else
-    table.fail_at("path",
-                  "expected \"auto\", \"pure\", \"passive\" or \"table\", got \"" + path + "\"");
+    table.fail_at("path", "expected \"auto\", \"free\", \"pure\", \"passive\" or \"table\", "
+                          "got \"" +
+                              path + "\"");
   motion.coupled_translations = table.boolean("coupled_translations", motion.coupled_translations);
   if (table.has("table"))
     motion.table = base / table.text("table", "");
@@ -129,6 +132,47 @@ void read_interactive(TomlTable& table, InteractiveSettings& interactive)
   table.reject_unknown_keys();
 }
 
+void read_loads(TomlTable& table, JointLoads& loads)
+{
+  loads.compression_n = table.number("compression_n", loads.compression_n);
+  loads.anterior_n = table.number("anterior_n", loads.anterior_n);
+  loads.valgus_nm = table.number("valgus_nm", loads.valgus_nm);
+  loads.internal_nm = table.number("internal_nm", loads.internal_nm);
+  table.reject_unknown_keys();
+}
+
+void read_articular(TomlTable& table, FreeKneeSettings& free)
+{
+  free.articular_contact = table.boolean("enabled", free.articular_contact);
+  ArticularSettings& a = free.articular;
+  a.modulus_mpa = table.number("modulus_mpa", a.modulus_mpa);
+  a.poisson = table.number("poisson", a.poisson);
+  a.thickness_mm = table.number("thickness_mm", a.thickness_mm);
+  a.gap_mm = table.number("gap_mm", a.gap_mm);
+  try {
+    validate(a);
+  } catch (const InputError& e) {
+    table.fail_at("modulus_mpa", e.what());
+  }
+  table.reject_unknown_keys();
+}
+
+void read_free(TomlTable& table, FreeKneeSettings& free)
+{
+  free.tolerance = table.number("tolerance", free.tolerance);
+  free.max_iterations = table.integer("max_iterations", free.max_iterations);
+  free.rotation_scale_mm = table.number("rotation_scale_mm", free.rotation_scale_mm);
+  free.max_step_mm = table.number("max_step_mm", free.max_step_mm);
+  free.max_translation_mm = table.number("max_translation_mm", free.max_translation_mm);
+  free.max_rotation_deg = table.number("max_rotation_deg", free.max_rotation_deg);
+  if (!(free.tolerance > 0.0) || free.max_iterations < 1 || !(free.rotation_scale_mm > 0.0) ||
+      !(free.max_step_mm > 0.0) || !(free.max_translation_mm > 0.0) ||
+      !(free.max_rotation_deg > 0.0))
+    table.fail_at("tolerance", "tolerance, max_iterations, rotation_scale_mm, max_step_mm, "
+                               "max_translation_mm and max_rotation_deg must be positive");
+  table.reject_unknown_keys();
+}
+
 void read_contact(TomlTable& table, ContactConfig& contact)
 {
   read_contact_table(table, contact);
@@ -190,6 +234,12 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
     read_interactive(*interactive, settings.interactive);
   if (auto contact = root.table("contact"))
     read_contact(*contact, settings.contact);
+  if (auto loads = root.table("loads"))
+    read_loads(*loads, settings.free.loads);
+  if (auto articular = root.table("articular"))
+    read_articular(*articular, settings.free);
+  if (auto free = root.table("free"))
+    read_free(*free, settings.free);
   root.reject_unknown_keys();
 }
 

@@ -82,6 +82,8 @@ std::string to_string(MotionSettings::Path path)
     return "passive";
   case MotionSettings::Path::table:
     return "table";
+  case MotionSettings::Path::free:
+    return "free";
   }
   return "?";
 }

@@ -3,6 +3,7 @@
 /// in-situ strain, quasi-static or interactive, and which pictures to draw (docs/flexion.md).
 
 #include "sim/contact/contact_config.hpp"
+#include "sim/flexion/articular_contact.hpp"
 #include "sim/material/material_parameters.hpp"
 #include "sim/solver/linear_solver.hpp"
 #include "sim/solver/static_solver.hpp"
@@ -54,10 +55,35 @@ struct MotionSettings {
     pure,      ///< rotation about the flexion axis alone
     passive,   ///< the passive knee's coupled tibial rotations (and translations if asked)
     table,     ///< Grood & Suntay coordinates from a CSV file, per angle or per time
+    free,      ///< the femur free in its five other coordinates (FreeKneeSettings)
   };
   Path path = Path::automatic;
   bool coupled_translations = false; ///< passive: the coupled tibial translations as well
   std::filesystem::path table;       ///< the CSV file of `table`
+};
+
+/// Loads on the joint, held at every angle (Open Knee(s)' passive flexion: 20 N of compression).
+struct JointLoads {
+  double compression_n = 20.0; ///< along the tibial axis, pressing the tibia onto the femur
+  double anterior_n = 0.0;     ///< on the tibia, anterior (a drawer: negative is posterior)
+  double valgus_nm = 0.0;      ///< on the tibia, N m (negative: varus)
+  double internal_nm = 0.0;    ///< on the tibia about its axis, N m (negative: external)
+};
+
+/// The free knee's solve (sim/flexion/free_femur.hpp).
+struct FreeKneeSettings {
+  JointLoads loads;
+  ArticularSettings articular;
+  bool articular_contact = true; ///< femur against tibia (the knee's bones as given)
+  double rotation_scale_mm = 20.0;
+  /// Converged when the femur's residual force, and its moment over rotation_scale_mm, are below
+  /// this share of the largest force on it (a ligament's, the contact's or a load).
+  double tolerance = 1e-4;
+  int max_iterations = 60;  ///< Newton iterations per angle
+  double max_step_mm = 2.0; ///< trust region radius in the scaled unknowns
+  /// A coordinate that runs beyond these from the built pose is a load the knee cannot hold.
+  double max_translation_mm = 25.0;
+  double max_rotation_deg = 60.0;
 };
 
 /// The ligament the model is, and where it fails (plausibility warnings per angle).
@@ -100,6 +126,7 @@ struct FlexionSettings {
   double in_situ_strain = 0.029;
   NewtonSettings newton;
   InteractiveSettings interactive;
+  FreeKneeSettings free;
   /// Ligament-bone contact; on by default (the model has both bones).
   ContactConfig contact;
   bool images = true;

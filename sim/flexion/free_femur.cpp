@@ -26,7 +26,7 @@ struct Knee {
   std::vector<LigamentAtPose>& ligaments;
   const ArticularContact* articular;
   const JointCoordinateSystem& jcs;
-  const FreeFemurSettings& settings;
+  const FreeKneeSettings& settings;
 
   /// Moves every ligament to (flexion, q); all or none: on a failure the ones that moved go back.
   bool move(double flexion_deg, const Vector5d& q, std::string& failure)
@@ -60,7 +60,7 @@ struct Knee {
   }
 };
 
-Vector5d unknown_scale(const FreeFemurSettings& settings)
+Vector5d unknown_scale(const FreeKneeSettings& settings)
 {
   Vector5d s;
   s << settings.rotation_scale_mm, settings.rotation_scale_mm, 1.0, 1.0, 1.0;
@@ -68,7 +68,7 @@ Vector5d unknown_scale(const FreeFemurSettings& settings)
 }
 
 /// The coordinate beyond its bound, if any.
-int runaway(const Vector5d& q, const FreeFemurSettings& settings)
+int runaway(const Vector5d& q, const FreeKneeSettings& settings)
 {
   for (int k = 0; k < 5; ++k) {
     const double bound = k < 2 ? settings.max_rotation_deg * degree : settings.max_translation_mm;
@@ -127,7 +127,7 @@ Vector5d load_gradient(const JointLoads& loads)
 FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
                                const ArticularContact* articular, const JointCoordinateSystem& jcs,
                                const std::vector<double>& angles_deg,
-                               const FreeFemurSettings& settings)
+                               const FreeKneeSettings& settings)
 {
   FreeFemurResult result;
   for (LigamentAtPose& ligament : ligaments)

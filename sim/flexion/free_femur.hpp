@@ -22,27 +22,6 @@
 
 namespace ligsim::sim {
 
-/// Loads on the joint, held at every angle (Open Knee(s)' passive flexion: 20 N of compression).
-struct JointLoads {
-  double compression_n = 20.0; ///< along the tibial axis, pressing the tibia onto the femur
-  double anterior_n = 0.0;     ///< on the tibia, anterior (a drawer: negative is posterior)
-  double valgus_nm = 0.0;      ///< on the tibia, N m (negative: varus)
-  double internal_nm = 0.0;    ///< on the tibia about its axis, N m (negative: external)
-};
-
-struct FreeFemurSettings {
-  JointLoads loads;
-  double rotation_scale_mm = 20.0;
-  /// Converged when the femur's residual force, and its moment over rotation_scale_mm, are below
-  /// this share of the largest force on it (a ligament's, the contact's or a load).
-  double tolerance = 1e-4;
-  int max_iterations = 60;  ///< Newton iterations per angle
-  double max_step_mm = 2.0; ///< trust region radius in the scaled unknowns
-  /// A coordinate that runs beyond these from the built pose is a load the knee cannot hold.
-  double max_translation_mm = 25.0;
-  double max_rotation_deg = 60.0;
-};
-
 /// The knee at one angle.
 struct FreeAngle {
   double angle_deg = 0.0;
@@ -70,7 +49,7 @@ struct FreeFemurResult {
 FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
                                const ArticularContact* articular, const JointCoordinateSystem& jcs,
                                const std::vector<double>& angles_deg,
-                               const FreeFemurSettings& settings);
+                               const FreeKneeSettings& settings);
 
 /// The potential of the loads at free coordinates q (N mm): minus their work from the built pose.
 double load_potential(const JointLoads& loads, const Vector5d& q);

@@ -158,6 +158,9 @@ KneePath knee_path(const FlexionSettings& settings, const KneeAnatomy& anatomy,
   case MotionSettings::Path::table:
     need_side("a table of Grood & Suntay coordinates");
     return read_kinematics_csv(motion.table);
+  case MotionSettings::Path::free:
+    // The knee's own path is found by the free solve (free_flexion.hpp), which replaces this.
+    return KneePath::pure_flexion();
   case MotionSettings::Path::automatic:
     break;
   }

@@ -213,6 +213,9 @@ angles_deg = [0, 30]
 [static]
 [interactive]
 [contact]
+[loads]
+[articular]
+[free]
 )"},
                   {"sim/flexion/flexion_config.cpp", "sim/scene/contact_table.cpp"},
                   [](const std::string& text, const fs::path& folder) {

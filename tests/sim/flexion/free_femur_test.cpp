@@ -81,7 +81,7 @@ TEST(FreeFemur, APrestretchedBarPullsTheFreeFemurToWhereItsForceVanishes)
   const FlexionSettings settings = test::bar_settings(0.029);
   std::vector<LigamentAtPose> ligaments;
   ligaments.emplace_back(bar_ligament(), settings, bar_joint(), cache());
-  FreeFemurSettings free;
+  FreeKneeSettings free;
   free.loads.compression_n = 0.0;
   const FreeFemurResult found = find_free_path(ligaments, nullptr, bar_joint(), {0.0}, free);
   ASSERT_TRUE(found.success) << found.failure;

@@ -1,0 +1,160 @@
+#include "sim/flexion/free_flexion.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/error.hpp"
+#include "common/progress.hpp"
+#include "common/run_summary.hpp"
+#include "sim/contact/bone_level_set.hpp"
+#include "sim/flexion/knee_sweep.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <set>
+
+namespace ligsim::sim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Where a centre on the tibia lies from the JCS origin: anterior and medial, mm.
+std::pair<double, double> on_tibia(const Eigen::Vector3d& point, const JointCoordinateSystem& jcs)
+{
+  if (!point.allFinite())
+    return {NAN, NAN};
+  const Eigen::Matrix3d axes = joint_axes(jcs);
+  const double side = jcs.side >= 0 ? 1.0 : -1.0;
+  const Eigen::Vector3d d = point - jcs.origin_mm;
+  // e1 points laterally in a right knee (side +1), medially in a left one.
+  return {d.dot(axes.col(1)), -side * d.dot(axes.col(0))};
+}
+
+} // namespace
+
+bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments)
+{
+  std::set<std::string> names;
+  for (const LigamentModel& l : ligaments) {
+    std::string upper = l.name;
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    names.insert(upper);
+    if (!l.model.femur || !l.model.tibia)
+      return false;
+  }
+  return names.count("MCL") && names.count("LCL") && names.count("ACL") && names.count("PCL");
+}
+
+FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const KneeMotion& motion,
+                              const FlexionSettings& settings, const fs::path& contact_cache)
+{
+  FreeFlexion free;
+  free.motion = motion;
+  std::vector<LigamentAtPose> held;
+  held.reserve(ligaments.size());
+  for (const LigamentModel& ligament : ligaments) {
+    FlexionSettings own = ligament_settings(settings, ligament);
+    own.mode = FlexionMode::quasi_static;
+    held.emplace_back(ligament, own, motion.jcs, contact_cache);
+  }
+  std::unique_ptr<BoneLevelSet> tibia;
+  std::unique_ptr<ArticularContact> articular;
+  const KneeModel& model = ligaments.front().model;
+  if (settings.free.articular_contact) {
+    const TriangleSurface tibia_surface = triangle_surface(model.tibia, "tibia.vtp");
+    // A wide band: a trial pose may press the femur millimetres into the tibia, and the
+    // foundation must see how deep to push it back (the ligaments' 1 mm band would not).
+    LevelSetSettings grid;
+    grid.voxel_mm = 0.5;
+    grid.band_mm = 8.0;
+    tibia = BoneLevelSet::cached(tibia_surface, grid, contact_cache / "tibia_articular.vdb");
+    articular = std::make_unique<ArticularContact>(triangle_surface(model.femur, "femur.vtp"),
+                                                   *tibia, motion.jcs, settings.free.articular);
+  }
+  free.found = find_free_path(held, articular.get(), motion.jcs, motion.angles_deg, settings.free);
+  std::vector<double> angles;
+  std::vector<JointPose> poses;
+  for (const FreeAngle& at : free.found.angles)
+    if (at.converged) {
+      angles.push_back(at.angle_deg);
+      poses.push_back(at.pose);
+    }
+  if (angles.empty())
+    return free;
+  free.motion.angles_deg = angles;
+  // The sweep starts from the built pose (load factor 0: a knot of its own, one degree before
+  // the first angle) and reaches the found pose of each angle at its step.
+  const double first = angles.front() - 1.0, last = angles.back();
+  free.motion.load_factors.clear();
+  for (double angle : angles)
+    free.motion.load_factors.push_back((angle - first) / (last - first));
+  free.motion.load_factors.back() = 1.0;
+  std::vector<double> knots = {first};
+  std::vector<JointPose> path_poses = {JointPose{}};
+  knots.insert(knots.end(), angles.begin(), angles.end());
+  path_poses.insert(path_poses.end(), poses.begin(), poses.end());
+  KneePath path = KneePath::table(KneePath::Parameter::flexion_deg, knots, path_poses,
+                                  "the knee's free equilibrium (femur free in five coordinates)");
+  free.motion.figures["path"] = path.description();
+  free.motion.femur_path = std::make_shared<FemurPath>(motion.jcs, std::move(path), first, last);
+  return free;
+}
+
+void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSystem& jcs,
+                          const fs::path& file)
+{
+  std::string text = "angle_deg,varus_deg,internal_rotation_deg,anterior_mm,medial_mm,proximal_mm,"
+                     "medial_contact_force_n,lateral_contact_force_n,medial_contact_anterior_mm,"
+                     "medial_contact_medial_mm,lateral_contact_anterior_mm,"
+                     "lateral_contact_medial_mm,residual_force_n,residual_moment_nmm,converged,"
+                     "iterations\n";
+  for (const FreeAngle& at : found.angles) {
+    const auto [ma, mm] = on_tibia(at.articular.medial_centre_mm, jcs);
+    const auto [la, lm] = on_tibia(at.articular.lateral_centre_mm, jcs);
+    text += fmt::format("{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},"
+                        "{:.3f},{:.3g},{:.3g},{},{}\n",
+                        at.angle_deg, at.pose.varus_deg, at.pose.internal_rotation_deg,
+                        at.pose.anterior_mm, -at.pose.lateral_mm, at.pose.proximal_mm,
+                        at.articular.medial_force_n.norm(), at.articular.lateral_force_n.norm(), ma,
+                        mm, la, lm, at.residual_force_n, at.residual_moment_nmm,
+                        at.converged ? 1 : 0, at.iterations);
+  }
+  write_text_atomically(file, text);
+}
+
+nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs)
+{
+  nlohmann::json angles = nlohmann::json::array();
+  for (const FreeAngle& at : found.angles) {
+    const auto [ma, mm] = on_tibia(at.articular.medial_centre_mm, jcs);
+    const auto [la, lm] = on_tibia(at.articular.lateral_centre_mm, jcs);
+    nlohmann::json forces = nlohmann::json::array();
+    for (const Eigen::Vector3d& f : at.ligament_femur_forces_n)
+      forces.push_back(json_vector3(f));
+    angles.push_back({{"angle_deg", at.angle_deg},
+                      {"converged", at.converged},
+                      {"iterations", at.iterations},
+                      {"varus_deg", at.pose.varus_deg},
+                      {"internal_rotation_deg", at.pose.internal_rotation_deg},
+                      {"anterior_mm", at.pose.anterior_mm},
+                      {"medial_mm", -at.pose.lateral_mm},
+                      {"proximal_mm", at.pose.proximal_mm},
+                      {"medial_contact_force_n", at.articular.medial_force_n.norm()},
+                      {"lateral_contact_force_n", at.articular.lateral_force_n.norm()},
+                      {"medial_contact_mm", {{"anterior", ma}, {"medial", mm}}},
+                      {"lateral_contact_mm", {{"anterior", la}, {"medial", lm}}},
+                      {"contact_area_mm2", at.articular.area_mm2},
+                      {"max_contact_pressure_mpa", at.articular.max_pressure_mpa},
+                      {"residual_force_n", at.residual_force_n},
+                      {"residual_moment_nmm", at.residual_moment_nmm},
+                      {"force_scale_n", at.force_scale_n},
+                      {"ligament_femur_forces_n", forces},
+                      {"wall_s", at.wall_s}});
+  }
+  return {{"success", found.success}, {"failure", found.failure}, {"angles", angles}};
+}
+
+} // namespace ligsim::sim

@@ -1,0 +1,43 @@
+#pragma once
+/// @brief `ligsim flexion` with the femur free: the knee's own path found at every angle
+/// (free_femur.hpp), then the sweep along it as along any path, so that every output of a
+/// prescribed sweep comes the same way; and kinematics.csv, what the knee did.
+
+#include "sim/flexion/free_femur.hpp"
+#include "sim/flexion/knee_model.hpp"
+#include "sim/flexion/knee_motion.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <vector>
+
+namespace ligsim::sim {
+
+struct FreeFlexion {
+  FreeFemurResult found;
+  /// `motion` with the path the knee found (a table of its poses by flexion angle); when the
+  /// search stopped, the angles it reached.
+  KneeMotion motion;
+};
+
+/// Whether the knee flexes free by default ([motion] path = "auto"): it has both collateral and
+/// both cruciate ligaments (by name) and its femur and tibia.
+bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments);
+
+/// Finds the free path of `ligaments` (with `settings`' loads and articular contact, the bones'
+/// grids in `contact_cache`) at `motion`'s angles in its joint coordinate system.
+FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const KneeMotion& motion,
+                              const FlexionSettings& settings,
+                              const std::filesystem::path& contact_cache);
+
+/// kinematics.csv: per angle the tibia's Grood & Suntay coordinates relative to the femur
+/// (angle_deg, varus_deg, internal_rotation_deg, anterior_mm, medial_mm, proximal_mm), the medial
+/// and lateral contact forces and their centres on the tibia (anterior and medial of the JCS
+/// origin, mm), and the femur's residual force and moment. Written atomically.
+void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSystem& jcs,
+                          const std::filesystem::path& file);
+
+nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs);
+
+} // namespace ligsim::sim
