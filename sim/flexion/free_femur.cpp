@@ -4,6 +4,8 @@
 #include "common/progress.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include <array>
@@ -140,12 +142,26 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
   const double load_scale = load_gradient(settings.loads).cwiseQuotient(scale).norm();
   Vector5d q = Vector5d::Zero();
   Progress progress("free flexion angles", angles_deg.size());
-  for (const double angle : angles_deg) {
+  for (std::size_t a = 0; a < angles_deg.size(); ++a) {
+    const double angle = angles_deg[a];
     const auto start = std::chrono::steady_clock::now();
     FreeAngle at;
     at.angle_deg = angle;
     std::string failure;
-    if (!knee.move(angle, q, failure)) {
+    // The path so far, carried on linearly: a first guess most of the way to the next pose.
+    bool moved = false;
+    if (a >= 2) {
+      const FreeAngle& one = result.angles[a - 1];
+      const FreeAngle& two = result.angles[a - 2];
+      const double ratio = (angle - one.angle_deg) / (one.angle_deg - two.angle_deg);
+      const Vector5d guess = q + ratio * (q - free_coordinates(two.pose));
+      std::string ignored;
+      if (runaway(guess, settings) < 0 && knee.move(angle, guess, ignored)) {
+        q = guess;
+        moved = true;
+      }
+    }
+    if (!moved && !knee.move(angle, q, failure)) {
       result.failure = fmt::format("flexion to {} deg: {}", angle, failure);
       return result;
     }
@@ -191,6 +207,16 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
           hessian.cwiseQuotient(scale * scale.transpose()); // d^2 / (dq_k s_k dq_l s_l)
       const Vector5d direction =
           newton_direction(scaled_hessian, scaled, settings.max_step_mm).cwiseQuotient(scale);
+      if (std::getenv("LIGSIM_FREE_DEBUG")) {
+        const Vector5d eig = Eigen::SelfAdjointEigenSolver<Matrix5d>(scaled_hessian).eigenvalues();
+        const Vector5d dq = direction.cwiseProduct(scale);
+        fmt::print(stderr,
+                   "DBG {} it {} |g| {:.3g} ({:.3g} {:.3g} {:.3g} {:.3g} {:.3g}) dq ({:.3g} {:.3g} "
+                   "{:.3g} {:.3g} {:.3g}) eig ({:.3g} {:.3g} {:.3g} {:.3g} {:.3g})\n",
+                   angle, iteration, scaled.norm(), scaled(0), scaled(1), scaled(2), scaled(3),
+                   scaled(4), dq(0), dq(1), dq(2), dq(3), dq(4), eig(0), eig(1), eig(2), eig(3),
+                   eig(4));
+      }
       // Backtracking on the knee's potential energy.
       double step = 1.0;
       bool accepted = false;

@@ -4,6 +4,8 @@
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/solver/condensed_stiffness.hpp"
 
+#include <array>
+
 namespace ligsim::sim {
 
 namespace {
@@ -119,13 +121,26 @@ Matrix5d LigamentAtPose::stiffness(const FreePose& pose) const
     D.block<3, 5>(3 * n, 0) = pose.jacobian(X);
     curvature += pose.weighted_second(X, m_residual.segment<3>(3 * n));
   }
-  if (m_contact_on && m_femur_obstacle >= 0)
+  if (m_contact_on && m_femur_obstacle >= 0) {
+    // The barrier of node i is e(y), y = L^T (x - s) the node in the femur's frame. With
+    // J = d(L y + s)/dq at y and B_k = dL/dq_k L^T (skew: L is a rotation):
+    // d^2E/dx dq_k = -H J_k + B_k g, and
+    // d^2E/dq_k dq_l = J_k^T H J_l - g . d^2(L y + s)/dq_k dq_l - J_k . B_l g - J_l . B_k g.
+    std::array<Eigen::Matrix3d, 5> B;
+    for (int k = 0; k < 5; ++k)
+      B[static_cast<std::size_t>(k)] = pose.rotation_derivative(k) * pose.rotation().transpose();
     for (const ContactPotential::NodeTerm& term :
          m_contact->potential().node_terms(static_cast<std::size_t>(m_femur_obstacle), m_x, 1.0)) {
       const Matrix35d J = pose.jacobian(term.local_mm);
-      coupling.block<3, 5>(3 * term.node, 0) -= term.hessian * J;
-      curvature += J.transpose() * term.hessian * J;
+      Matrix35d Bg;
+      for (int k = 0; k < 5; ++k)
+        Bg.col(k) = B[static_cast<std::size_t>(k)] * term.gradient;
+      coupling.block<3, 5>(3 * term.node, 0) += Bg - term.hessian * J;
+      const Matrix5d cross = J.transpose() * Bg; // (k, l): J_k . B_l g
+      curvature += J.transpose() * term.hessian * J -
+                   pose.weighted_second(term.local_mm, term.gradient) - cross - cross.transpose();
     }
+  }
   const CondensedStiffness S =
       condensed_stiffness(*m_body, m_conditions, m_x,
                           m_contact_on ? &m_contact->potential() : nullptr, 1.0, D, &coupling);

@@ -5,10 +5,9 @@
 /// coordinates: the generalized force (the footprint's reaction and the contact's, on the femur)
 /// and the stiffness with the ligament's nodes eliminated (the Schur complement of its tangent).
 ///
-/// The stiffness is exact for the ligament's elasticity and the footprint's motion; of the
-/// ligament-femur contact it keeps the barrier's curvature along the motion and leaves out its
-/// gradient times the motion's own curvature (a Gauss-Newton term: small where the contact
-/// force is small against the footprint's).
+/// The stiffness is exact: the ligament's elasticity, the footprint's motion and the
+/// ligament-femur contact, whose barrier moves with the femur (a node's barrier is a function of
+/// where the node lies in the femur's frame).
 
 #include "sim/flexion/flexion_settings.hpp"
 #include "sim/flexion/initial_overlap.hpp"

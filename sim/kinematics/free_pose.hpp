@@ -40,6 +40,12 @@ public:
   Matrix35d jacobian(const Eigen::Vector3d& X) const;
   /// sum_m w_m d^2 point_m / (d q_k d q_l), the 5 x 5 second derivative of w . point(X).
   Matrix5d weighted_second(const Eigen::Vector3d& X, const Eigen::Vector3d& w) const;
+  /// The motion's rotation L (point = L X + shift) and dL/dq_k (zero for the translations).
+  const Eigen::Matrix3d& rotation() const { return m_Rt; }
+  Eigen::Matrix3d rotation_derivative(int k) const
+  {
+    return k < 2 ? m_dRt[static_cast<std::size_t>(k)] : Eigen::Matrix3d::Zero();
+  }
 
 private:
   Eigen::Isometry3d m_motion;

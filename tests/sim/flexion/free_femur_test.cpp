@@ -73,6 +73,48 @@ TEST(FreeFemur, ALigamentsForceAndStiffnessAreTheDerivativesOfItsEnergy)
   EXPECT_LT((K - K.transpose()).norm(), 1e-9 * K.norm());
 }
 
+TEST(FreeFemur, TheContactOfTheMovingFemurEntersBothDerivativesExactly)
+{
+  Progress::set_quiet(true);
+  // A femur block beside the bar's side, 0.1 mm off it: the barrier acts on the bar's nodes
+  // there, and moves with the femur.
+  FlexionSettings settings = test::bar_settings(0.029);
+  settings.contact.enabled = true;
+  settings.contact.barrier.d_hat_mm = 0.3;
+  settings.contact.bones = {"femur"};
+  LigamentModel ligament = bar_ligament();
+  const TetMesh block = sim::structured_box_mesh({1, 1, 1}, {8.0, 6.0, 8.0});
+  TriangleSurface side;
+  side.V = block.V.rowwise() + Eigen::RowVector3d(-8.1, -1.0, 10.0);
+  side.F = sim::boundary_surface(block).faces;
+  ligament.model.femur = test::polydata(side);
+  std::filesystem::remove_all(cache() / "beside");
+  LigamentAtPose bar(ligament, settings, bar_joint(), cache() / "beside");
+  ASSERT_TRUE(bar.settle()) << bar.failure();
+  Vector5d q;
+  q << 0.01, -0.02, 0.05, -0.05, -0.05;
+  const double flexion = 4.0;
+  ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, q))) << bar.failure();
+  const FreePose pose(bar_joint(), flexion, q);
+  const Vector5d g = bar.generalized_force(pose);
+  const Matrix5d K = bar.stiffness(pose);
+  const Vector5d h = (Vector5d() << 1e-6, 1e-6, 2e-5, 2e-5, 2e-5).finished();
+  for (int k = 0; k < 5; ++k) {
+    Vector5d plus = q, minus = q;
+    plus(k) += h(k);
+    minus(k) -= h(k);
+    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, plus)));
+    const double e_plus = bar.energy();
+    const Vector5d g_plus = bar.generalized_force(FreePose(bar_joint(), flexion, plus));
+    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, minus)));
+    const double e_minus = bar.energy();
+    const Vector5d g_minus = bar.generalized_force(FreePose(bar_joint(), flexion, minus));
+    EXPECT_NEAR(g(k), (e_plus - e_minus) / (2.0 * h(k)), 1e-4 * g.norm() + 1e-6) << k;
+    const Vector5d column = (g_plus - g_minus) / (2.0 * h(k));
+    EXPECT_LT((K.col(k) - column).norm(), 2e-3 * K.norm()) << k << "\n" << K << "\n" << column;
+  }
+}
+
 TEST(FreeFemur, APrestretchedBarPullsTheFreeFemurToWhereItsForceVanishes)
 {
   Progress::set_quiet(true);
