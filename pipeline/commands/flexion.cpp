@@ -224,16 +224,18 @@ void run_flexion(const FlexionJobOptions& options)
   summary.inputs()["model"] = settings.model_dir.string();
   if (!options.flexion.config.empty())
     summary.inputs()["config"] = options.flexion.config.string();
-  const std::vector<sim::LigamentModel> ligaments =
-      sim::chosen_ligaments(sim::load_knee(settings.model_dir, settings.ligament.name), settings);
+  const std::vector<sim::LigamentModel> whole =
+      sim::load_knee(settings.model_dir, settings.ligament.name);
+  const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
   const bool knee = ligaments.front().manifest.has_value();
   std::vector<std::string> names;
   for (const sim::LigamentModel& ligament : ligaments)
     names.push_back(ligament.name);
   // The ligaments share the bones and the anatomy: the motion comes from any of them.
   const sim::KneeModel& bones = ligaments.front().model;
+  // A knee tested with a ligament cut still finds its own path: the default follows the knee.
   if (settings.motion.path == sim::MotionSettings::Path::automatic &&
-      sim::flexes_free_by_default(ligaments)) {
+      sim::flexes_free_by_default(whole)) {
     settings.motion.path = sim::MotionSettings::Path::free;
     log_info("flexion: the knee has both collaterals and both cruciates: the femur is free in its "
              "five other coordinates ([motion] path = \"free\")");
@@ -243,7 +245,11 @@ void run_flexion(const FlexionJobOptions& options)
   std::optional<sim::FreeFlexion> free;
   if (settings.motion.path == sim::MotionSettings::Path::free) {
     StageMeter free_meter;
-    free = sim::find_free_flexion(ligaments, motion, settings, settings.model_dir / "contact");
+    // The path is the whole knee's (but the ligaments cut), whichever of them are swept.
+    sim::FlexionSettings knee_settings = settings;
+    knee_settings.ligaments.clear();
+    const std::vector<sim::LigamentModel> tested = sim::chosen_ligaments(whole, knee_settings);
+    free = sim::find_free_flexion(tested, motion, settings, settings.model_dir / "contact");
     summary.add_stage("free_path", free_meter, {{"success", free->found.success}});
     if (!free->found.success && free->motion.angles_deg == motion.angles_deg)
       fail<SolverError>("flexion with the femur free: {}", free->found.failure);

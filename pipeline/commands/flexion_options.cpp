@@ -33,6 +33,10 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
                   "a knee model: the ligaments to sweep, by name (default: all)")
       ->delimiter(',');
   command
+      .add_option("--without", options.without,
+                  "a knee model: ligaments cut, by name (sectioning: the knee without them)")
+      ->delimiter(',');
+  command
       .add_option("--contact", options.contact,
                   "ligament-bone contact: on (default) or off (the ligament may cross the bones)")
       ->check(CLI::IsMember({"on", "off"}));
@@ -77,6 +81,8 @@ sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const 
   }
   if (!options.ligaments.empty())
     settings.ligaments = options.ligaments;
+  if (!options.without.empty())
+    settings.without = options.without;
   if (options.speed)
     settings.interactive.angular_speed_deg_s = *options.speed;
   if (options.time_step)

@@ -27,6 +27,7 @@ struct FlexionOptions {
   std::optional<double> time_step;
   std::string contact;                ///< "on", "off" or "" (the config's, by default on)
   std::vector<std::string> ligaments; ///< a knee model's ligaments to sweep (empty: all)
+  std::vector<std::string> without;   ///< a knee model's ligaments cut (sectioned)
 };
 
 /// Adds --config, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to

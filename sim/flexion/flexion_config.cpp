@@ -218,6 +218,8 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
     settings.image_angles_deg = root.numbers("image_angles_deg");
   if (root.has("ligaments"))
     settings.ligaments = root.texts("ligaments");
+  if (root.has("without"))
+    settings.without = root.texts("without");
   if (auto axis = root.table("axis"))
     read_axis(*axis, settings.axis);
   if (auto anatomy = root.table("anatomy"))

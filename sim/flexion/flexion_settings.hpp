@@ -134,6 +134,8 @@ struct FlexionSettings {
   std::vector<double> image_angles_deg = {0, 45, 90};
   /// The ligaments of a knee model to sweep, by name (empty: all of them).
   std::vector<std::string> ligaments;
+  /// The ligaments cut (sectioned): the knee flexes or is tested without them.
+  std::vector<std::string> without;
   /// What the config or the flags set rather than left at its default: "material",
   /// "in_situ_strain", "ligament.name", "ligament.failure_strain", "ligament.failure_load_n". A
   /// knee model takes each ligament's own values (knee.json) for what is not given.

