@@ -114,13 +114,14 @@ void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSys
   for (const FreeAngle& at : found.angles) {
     const auto [ma, mm] = on_tibia(at.articular.medial_centre_mm, jcs);
     const auto [la, lm] = on_tibia(at.articular.lateral_centre_mm, jcs);
-    text += fmt::format("{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},"
-                        "{:.3f},{:.3g},{:.3g},{},{}\n",
-                        at.angle_deg, at.pose.varus_deg, at.pose.internal_rotation_deg,
-                        at.pose.anterior_mm, -at.pose.lateral_mm, at.pose.proximal_mm,
-                        at.articular.medial_force_n.norm(), at.articular.lateral_force_n.norm(), ma,
-                        mm, la, lm, at.residual_force_n, at.residual_moment_nmm,
-                        at.converged ? 1 : 0, at.iterations);
+    // The coordinates to full precision: the file replays as the path it records.
+    text += fmt::format(
+        "{},{},{},{},{},{},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3g},{:.3g},{},"
+        "{}\n",
+        at.angle_deg, at.pose.varus_deg, at.pose.internal_rotation_deg, at.pose.anterior_mm,
+        -at.pose.lateral_mm, at.pose.proximal_mm, at.articular.medial_force_n.norm(),
+        at.articular.lateral_force_n.norm(), ma, mm, la, lm, at.residual_force_n,
+        at.residual_moment_nmm, at.converged ? 1 : 0, at.iterations);
   }
   write_text_atomically(file, text);
 }

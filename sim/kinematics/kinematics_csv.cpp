@@ -54,6 +54,18 @@ double number_of(const std::string& field, const std::filesystem::path& file, in
   return value;
 }
 
+/// What a free run writes besides the coordinates (sim/flexion/free_flexion.hpp).
+const std::array<const char*, 10> free_run_columns = {"medial_contact_force_n",
+                                                      "lateral_contact_force_n",
+                                                      "medial_contact_anterior_mm",
+                                                      "medial_contact_medial_mm",
+                                                      "lateral_contact_anterior_mm",
+                                                      "lateral_contact_medial_mm",
+                                                      "residual_force_n",
+                                                      "residual_moment_nmm",
+                                                      "converged",
+                                                      "iterations"};
+
 } // namespace
 
 KneePath read_kinematics_csv(const std::filesystem::path& file)
@@ -61,7 +73,8 @@ KneePath read_kinematics_csv(const std::filesystem::path& file)
   std::ifstream in(file);
   if (!in)
     fail("kinematics file {} cannot be opened", file.string());
-  std::vector<int> column_of_field; // index into column_names per field
+  std::vector<int> column_of_field; // index into column_names per field, -1: skipped
+  int medial_column = -1;           // the field that gives medial_mm (= -lateral_mm)
   std::vector<double> knots;
   std::vector<JointPose> poses;
   bool by_time = false;
@@ -75,7 +88,20 @@ KneePath read_kinematics_csv(const std::filesystem::path& file)
     const std::vector<std::string> fields = fields_of(text);
     if (column_of_field.empty()) {
       for (const std::string& name : fields) {
-        const auto found = std::find(column_names.begin(), column_names.end(), name);
+        // A free run's kinematics.csv reads as a table too: its angle and its medial shift name
+        // the same coordinates, and its contact and residual columns are skipped.
+        const std::string known = name == "angle_deg"   ? "flexion_deg"
+                                  : name == "medial_mm" ? "lateral_mm"
+                                                        : name;
+        if (name == "medial_mm")
+          medial_column = static_cast<int>(column_of_field.size());
+        const auto found = std::find(column_names.begin(), column_names.end(), known);
+        if (found == column_names.end() &&
+            std::find(free_run_columns.begin(), free_run_columns.end(), name) !=
+                free_run_columns.end()) {
+          column_of_field.push_back(-1);
+          continue;
+        }
         if (found == column_names.end())
           fail("{}:{}: unknown column '{}' (the columns are {})", file.string(), number, name,
                fmt::join(column_names, ", "));
@@ -96,8 +122,12 @@ KneePath read_kinematics_csv(const std::filesystem::path& file)
            fields.size(), column_of_field.size());
     std::array<double, 7> row = {};
     for (std::size_t f = 0; f < fields.size(); ++f) {
+      if (column_of_field[f] < 0)
+        continue;
       const auto column = static_cast<std::size_t>(column_of_field[f]);
       row[column] = number_of(fields[f], file, number, column_names[column]);
+      if (static_cast<int>(f) == medial_column)
+        row[column] = -row[column];
     }
     knots.push_back(by_time ? row[0] : row[1]);
     poses.push_back({row[1], row[2], row[3], row[4], row[5], row[6]});

@@ -5,7 +5,9 @@
 /// The first line that is not a comment (#) names the columns, separated by commas:
 /// `flexion_deg` (required), `time_s` (optional: then the rows are a motion in time),
 /// `varus_deg`, `internal_rotation_deg`, `lateral_mm`, `anterior_mm`, `proximal_mm` (optional,
-/// 0 when absent). Each further line is one row of numbers.
+/// 0 when absent). Each further line is one row of numbers. A free run's kinematics.csv reads as
+/// it is: its `angle_deg` is the flexion, its `medial_mm` minus `lateral_mm`, and its contact and
+/// residual columns are skipped.
 
 #include "sim/kinematics/knee_path.hpp"
 

@@ -275,3 +275,62 @@ TEST(KneeCli, BadKneeConfigsAreRejectedWithWhereAndWhat)
   expect_rejected(bones + "[material]\nmu_mpa = 1\n" + a, "per ligament");
   expect_rejected("[input]\nfemur = \"femur.vtp\"\n" + a, "needs the femur and the tibia");
 }
+
+TEST(KneeCli, TheFreeKneesPathReplayedAsATableGivesItsForcesAndACutLigamentChangesIt)
+{
+  // The synthetic knee's femur free (no articular contact: its bones stand 16 mm apart), held by
+  // its three pre-stretched ligaments, which pull it down until they hold it.
+  const fs::path config = knee_inputs() / "free.toml";
+  std::ofstream(config) << "[motion]\npath = \"free\"\n\n[loads]\ncompression_n = 0\n\n"
+                        << "[articular]\nenabled = false\n";
+  const fs::path free = fresh_folder("knee_flexion_free");
+  const CliResult found = flex(free, "--no-images --config " + config.string());
+  ASSERT_EQ(found.exit_code, 0) << found.stderr_text;
+  const std::vector<std::string> kinematics = lines(free / "kinematics.csv");
+  ASSERT_EQ(kinematics.size(), 4u);
+  const std::vector<std::string> header = cells(kinematics[0]);
+  for (const char* name : {"angle_deg", "varus_deg", "internal_rotation_deg", "anterior_mm",
+                           "medial_mm", "proximal_mm", "medial_contact_force_n",
+                           "lateral_contact_force_n", "residual_force_n", "residual_moment_nmm"})
+    EXPECT_NE(std::find(header.begin(), header.end(), name), header.end()) << name;
+  const nlohmann::json summary = read_json(free / "summary.json");
+  for (const nlohmann::json& angle : summary["results"]["free"]["angles"]) {
+    EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();
+    // In equilibrium: what is left is round-off against the ligaments' pull.
+    EXPECT_LT(angle["residual_force_n"].get<double>(),
+              1e-4 * angle["force_scale_n"].get<double>() + 1e-9);
+    // The femur came down the tibial axis, the ligaments' pre-stretch let go.
+    EXPECT_GT(angle["proximal_mm"].get<double>(), 0.05) << angle.dump();
+  }
+
+  // The found path prescribed as a table gives the same forces.
+  const fs::path replay_config = knee_inputs() / "replay.toml";
+  std::ofstream(replay_config) << "[motion]\npath = \"table\"\ntable = \""
+                               << (free / "kinematics.csv").string() << "\"\n";
+  const fs::path replay = fresh_folder("knee_flexion_replay");
+  const CliResult replayed = flex(replay, "--no-images --config " + replay_config.string());
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.stderr_text;
+  const nlohmann::json again = read_json(replay / "summary.json");
+  for (const char* name : {"A", "B", "C"})
+    for (std::size_t a = 0; a < 3; ++a) {
+      const double expected =
+          summary["results"]["ligaments"][name]["angles"][a]["femur_force_magnitude_n"];
+      const double got =
+          again["results"]["ligaments"][name]["angles"][a]["femur_force_magnitude_n"];
+      EXPECT_NEAR(got, expected, 1e-6 * std::max(1.0, std::abs(expected))) << name << " " << a;
+    }
+
+  // Cutting A: the femur finds another pose (the others carry what A held).
+  const fs::path cut = fresh_folder("knee_flexion_without_A");
+  const CliResult sectioned = flex(cut, "--no-images --without A --config " + config.string());
+  ASSERT_EQ(sectioned.exit_code, 0) << sectioned.stderr_text;
+  const nlohmann::json without = read_json(cut / "summary.json");
+  EXPECT_FALSE(without["results"]["ligaments"].contains("A"));
+  const double with_a = summary["results"]["free"]["angles"][2]["varus_deg"];
+  const double without_a = without["results"]["free"]["angles"][2]["varus_deg"];
+  EXPECT_GT(std::abs(with_a - without_a), 0.01);
+  EXPECT_NE(run_ligsim("flexion --model " + knee_model().string() + " --without X --out " +
+                       fresh_folder("knee_flexion_without_X").string())
+                .stderr_text.find("--without names X"),
+            std::string::npos);
+}
