@@ -7,6 +7,23 @@
 
 namespace ligsim::cli {
 
+namespace {
+
+/// `--load KEY=VALUE`s, read as a [loads] table so that they meet the config's checks.
+void read_load_flags(const std::vector<std::string>& loads, sim::FlexionSettings& settings)
+{
+  std::string table = "[loads]\n";
+  for (const std::string& load : loads) {
+    const std::size_t equals = load.find('=');
+    if (equals == std::string::npos || load.find_first_of("[]\n\"") != std::string::npos)
+      fail("--load {}: expected KEY=VALUE, e.g. --load anterior_n=134", load);
+    table += load.substr(0, equals) + " = " + load.substr(equals + 1) + "\n";
+  }
+  sim::parse_flexion_config(table, {}, "--load", settings);
+}
+
+} // namespace
+
 void add_flexion_options(CLI::App& command, FlexionOptions& options, bool interactive)
 {
   command.add_option("--config", options.config, "flexion config (.toml); flags override it")
@@ -35,6 +52,12 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
   command
       .add_option("--without", options.without,
                   "a knee model: ligaments cut, by name (sectioning: the knee without them)")
+      ->delimiter(',');
+  command
+      .add_option("--load", options.loads,
+                  "a free knee: a load on the joint over [loads], KEY=VALUE (compression_n, "
+                  "anterior_n, valgus_nm, internal_nm), e.g. --load anterior_n=134 (a laxity "
+                  "test)")
       ->delimiter(',');
   command
       .add_option("--contact", options.contact,
@@ -83,6 +106,8 @@ sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const 
     settings.ligaments = options.ligaments;
   if (!options.without.empty())
     settings.without = options.without;
+  if (!options.loads.empty())
+    read_load_flags(options.loads, settings);
   if (options.speed)
     settings.interactive.angular_speed_deg_s = *options.speed;
   if (options.time_step)

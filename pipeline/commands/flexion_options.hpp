@@ -28,6 +28,7 @@ struct FlexionOptions {
   std::string contact;                ///< "on", "off" or "" (the config's, by default on)
   std::vector<std::string> ligaments; ///< a knee model's ligaments to sweep (empty: all)
   std::vector<std::string> without;   ///< a knee model's ligaments cut (sectioned)
+  std::vector<std::string> loads;     ///< a free knee's loads, "KEY=VALUE" over [loads]
 };
 
 /// Adds --config, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to

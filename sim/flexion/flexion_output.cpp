@@ -40,6 +40,8 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"volume_beyond_failure_strain", angle.failed_volume_fraction},
                           {"femur_force_n", json_vector3(angle.femur_force_n)},
                           {"femur_force_magnitude_n", angle.femur_force_n.norm()},
+                          {"femur_net_force_n", json_vector3(femur_net_force(angle))},
+                          {"femur_net_force_magnitude_n", femur_net_force(angle).norm()},
                           {"tibia_force_n", json_vector3(angle.tibia_force_n)},
                           {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
                           {"newton_iterations", angle.newton_iterations},
@@ -162,7 +164,8 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
                     "femur_contact_area_mm2,tibia_contact_area_mm2,max_penetration_mm,"
                     "mean_fiber_strain,max_fiber_strain,volume_beyond_failure_strain,"
                     "length_change_mm,length_change_pct,time_s,max_regional_fiber_strain";
-  csv += fibula ? ",fibula_force_n,fibula_contact_n,fibula_contact_area_mm2\n" : "\n";
+  csv += fibula ? ",fibula_force_n,fibula_contact_n,fibula_contact_area_mm2" : "";
+  csv += ",femur_net_force_n\n";
   const auto number = [](double value) {
     return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
   };
@@ -197,7 +200,7 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
       if (fibula)
         csv += fmt::format(",{},{},{}", on_tibia ? "" : distal, contact["fibula"].first,
                            contact["fibula"].second);
-      csv += "\n";
+      csv += fmt::format(",{:.9g}\n", femur_net_force(a).norm());
     }
   }
   write_text_atomically(m_directory / "flexion.csv", csv);

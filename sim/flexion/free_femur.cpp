@@ -4,8 +4,6 @@
 #include "common/progress.hpp"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <cstdlib>
 #include <fmt/format.h>
 
 #include <array>
@@ -207,16 +205,6 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
           hessian.cwiseQuotient(scale * scale.transpose()); // d^2 / (dq_k s_k dq_l s_l)
       const Vector5d direction =
           newton_direction(scaled_hessian, scaled, settings.max_step_mm).cwiseQuotient(scale);
-      if (std::getenv("LIGSIM_FREE_DEBUG")) {
-        const Vector5d eig = Eigen::SelfAdjointEigenSolver<Matrix5d>(scaled_hessian).eigenvalues();
-        const Vector5d dq = direction.cwiseProduct(scale);
-        fmt::print(stderr,
-                   "DBG {} it {} |g| {:.3g} ({:.3g} {:.3g} {:.3g} {:.3g} {:.3g}) dq ({:.3g} {:.3g} "
-                   "{:.3g} {:.3g} {:.3g}) eig ({:.3g} {:.3g} {:.3g} {:.3g} {:.3g})\n",
-                   angle, iteration, scaled.norm(), scaled(0), scaled(1), scaled(2), scaled(3),
-                   scaled(4), dq(0), dq(1), dq(2), dq(3), dq(4), eig(0), eig(1), eig(2), eig(3),
-                   eig(4));
-      }
       // Backtracking on the knee's potential energy.
       double step = 1.0;
       bool accepted = false;

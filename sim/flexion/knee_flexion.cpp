@@ -360,4 +360,13 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   return sweep;
 }
 
+Eigen::Vector3d femur_net_force(const AngleResult& angle)
+{
+  Eigen::Vector3d net = angle.femur_force_n;
+  for (const BoneContact& bone : angle.contact)
+    if (bone.bone == "femur" && bone.in_solve)
+      net += bone.force_n;
+  return net;
+}
+
 } // namespace ligsim::sim

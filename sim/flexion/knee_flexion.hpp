@@ -103,6 +103,12 @@ struct AngleResult {
   Eigen::VectorXd pressure_mpa;
 };
 
+/// What the femur exerts on the ligament through its footprint and by contact together (minus
+/// the ligament's whole pull on the femur, the in-situ force a robot's superposition measures).
+/// Beside a footprint the two can cancel: an atlas ligament segmented into its bone is pushed out
+/// beside its bound rim, and the rim's reaction holds that contact.
+Eigen::Vector3d femur_net_force(const AngleResult& angle);
+
 struct SweepResult {
   bool success = false;
   std::string failure;

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "stages/geometry/surface_query.hpp"
+#include "stages/geometry/surface_topology.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -68,12 +69,24 @@ Area from_proximity(const Rule& rule, const Inputs& inputs, Bone bone)
     fail("{} attachment: proximity distance must be positive, got {} mm", name_of(bone),
          rule.distance_mm);
   const SurfaceQuery query(*surface);
+  // A ligament segmented into its bone is attached there however deep it goes (the HRA male
+  // LCL enters the fibular head by 3 mm); only a closed bone has an inside to ask about.
+  const bool closed = check_topology(*surface).closed_manifold();
   Area area;
-  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v)
-    if (query.distance(inputs.ligament->V.row(v).transpose()) <= rule.distance_mm)
+  int inside = 0;
+  for (Eigen::Index v = 0; v < inputs.ligament->V.rows(); ++v) {
+    const Eigen::Vector3d p = inputs.ligament->V.row(v).transpose();
+    const bool near = query.distance(p) <= rule.distance_mm;
+    const bool in = !near && closed && query.inside(p);
+    if (near || in)
       area.vertices.push_back(static_cast<int>(v));
+    inside += in;
+  }
   area.rule = fmt::format("proximity: within {} mm of the {}", rule.distance_mm,
                           bone == Bone::femur ? "femur" : "tibia");
+  if (inside > 0)
+    area.corrections.push_back(fmt::format(
+        "{} vertices deeper than {} mm inside the bone taken too", inside, rule.distance_mm));
   return area;
 }
 

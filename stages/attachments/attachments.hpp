@@ -19,7 +19,8 @@ namespace ligsim::attachments {
 /// How one attachment area is found. `rule`:
 ///  - "indices":   the vertex indices listed in `indices`;
 ///  - "array":     the vertices where the surface's point-data array `array` is non-zero;
-///  - "proximity": the vertices within `distance_mm` of the bone surface;
+///  - "proximity": the vertices within `distance_mm` of the bone surface, or inside it (a closed
+///                 bone);
 ///  - "patch":     the vertices within `distance_mm` of a footprint surface (an enthesis patch,
 ///                 given to `find` as Inputs::femur_patch / tibia_patch; `patch` names its file);
 ///  - "landmark":  the vertices within `radius_mm` of a point: `point_mm`, or the anatomy's

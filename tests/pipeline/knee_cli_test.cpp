@@ -333,4 +333,22 @@ TEST(KneeCli, TheFreeKneesPathReplayedAsATableGivesItsForcesAndACutLigamentChang
                        fresh_folder("knee_flexion_without_X").string())
                 .stderr_text.find("--without names X"),
             std::string::npos);
+
+  // A drawer: --load pulls the tibia forward of the unloaded knee's pose.
+  const fs::path drawer = fresh_folder("knee_flexion_drawer");
+  const CliResult pulled =
+      flex(drawer, "--no-images --load anterior_n=5 --config " + config.string());
+  ASSERT_EQ(pulled.exit_code, 0) << pulled.stderr_text;
+  const nlohmann::json loaded = read_json(drawer / "summary.json");
+  for (std::size_t a = 0; a < 3; ++a)
+    EXPECT_GT(loaded["results"]["free"]["angles"][a]["anterior_mm"].get<double>(),
+              summary["results"]["free"]["angles"][a]["anterior_mm"].get<double>() + 0.01)
+        << a;
+  for (const auto& [load, said] :
+       {std::pair{"anterior=5", "unknown key 'anterior'"}, {"anterior_n", "expected KEY=VALUE"}})
+    EXPECT_NE(flex(fresh_folder("knee_flexion_bad_load"),
+                   std::string("--no-images --load ") + load + " --config " + config.string())
+                  .stderr_text.find(said),
+              std::string::npos)
+        << load;
 }

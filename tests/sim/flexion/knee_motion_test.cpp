@@ -247,6 +247,39 @@ TEST(InitialOverlap, AReshapingPushLeavesNoStrainBehind)
   EXPECT_LT(reshaped.max_fiber_stretch - 1.0, 0.1 * (deformed.max_fiber_stretch - 1.0));
 }
 
+TEST(KneeFlexion, TheFemursNetForceAddsItsContactToItsFootprint)
+{
+  // The femur reaches 0.4 mm into the bar's side below its footprint: pushed out, the bar
+  // presses on the femur there, and the footprint's reaction carries that push too. With the
+  // tibia's, the forces on the bar balance: femur net + tibia footprint + tibia contact = 0.
+  ligsim::Progress::set_quiet(true);
+  KneeModel model = bar_knee();
+  model.femur = box({-20.0, -20.0, 14.0}, {0.4, 24.0, 200.0});
+  const FlexionAxis axis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()};
+  const BoundaryConditions conditions = knee_conditions(model, axis, 0.0);
+  const fs::path cache = fs::temp_directory_path() / "ligsim_net_force_cache";
+  fs::remove_all(cache);
+  FlexionSettings settings;
+  settings.angles_deg = {0.0, 10.0};
+  settings.in_situ_strain = 0.03;
+  settings.contact.bones = {"femur", "tibia"};
+  const HyperelasticBody body(model.mesh, settings.material,
+                              prestretched_fibers(model, settings.in_situ_strain));
+  const KneeContact contact(model, conditions, settings.contact, cache);
+  const SweepResult sweep = run_flexion_sweep(
+      body, conditions, settings,
+      [](const AngleResult&, const HyperelasticBody&, const Eigen::VectorXd&) {}, &contact);
+  ASSERT_TRUE(sweep.success) << sweep.failure;
+  for (const AngleResult& a : sweep.angles) {
+    Eigen::Vector3d femur_contact = Eigen::Vector3d::Zero(), others = a.tibia_force_n;
+    for (const BoneContact& bone : a.contact)
+      (bone.bone == "femur" ? femur_contact : others) += bone.force_n;
+    EXPECT_GT(femur_contact.norm(), 0.05 * a.femur_force_n.norm()) << a.angle_deg;
+    EXPECT_TRUE(femur_net_force(a).isApprox(a.femur_force_n + femur_contact, 1e-12));
+    EXPECT_LT((femur_net_force(a) + others).norm(), 1e-4 * a.femur_force_n.norm()) << a.angle_deg;
+  }
+}
+
 TEST(Plausibility, ABadAxisIsSaidOutLoud)
 {
   ligsim::Progress::set_quiet(true);

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <set>
+#include <vector>
+
 using namespace ligsim;
 
 namespace {
@@ -183,6 +187,64 @@ TEST(Footprints, PatchAndTheSideNextToTheBone)
   EXPECT_LT(side.tibia.area_mm2, 0.5 * whole.tibia.area_mm2);
   for (int v : side.tibia.vertices)
     EXPECT_LT(tube().surface.V(v, 0), -2.0);
+}
+
+namespace {
+/// The closed box [-5, 5] x [-5, 5] x [-1, top], outward triangles; without its top face when
+/// `open`.
+TriangleSurface box_bone(double top, bool open)
+{
+  TriangleSurface box;
+  box.V.resize(8, 3);
+  for (int c = 0; c < 8; ++c)
+    box.V.row(c) << (c & 1 ? 5.0 : -5.0), (c & 2 ? 5.0 : -5.0), (c & 4 ? top : -1.0);
+  std::vector<std::array<int, 3>> faces = {{0, 2, 1}, {1, 2, 3}, {0, 1, 5}, {0, 5, 4}, {1, 3, 7},
+                                           {1, 7, 5}, {3, 2, 6}, {3, 6, 7}, {2, 0, 4}, {2, 4, 6}};
+  if (!open)
+    faces.insert(faces.end(), {{4, 5, 7}, {4, 7, 6}});
+  box.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    box.F.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
+  return box;
+}
+} // namespace
+
+TEST(Footprints, ProximityTakesTheLigamentInsideAClosedBone)
+{
+  // The tube (radius 3 mm, z 0 to 30) enters a closed box bone up to z = 8: its wall lies 2 mm
+  // from the box's sides, deeper than the 1 mm proximity, yet it is attached there.
+  const TriangleSurface closed = box_bone(8.0, false);
+  attachments::Inputs inputs{&tube().surface, nullptr, &closed, {}};
+  attachments::Rule femur, tibia;
+  femur.rule = "end";
+  femur.end = "max";
+  tibia.rule = "proximity";
+  tibia.distance_mm = 1.0;
+  const auto found = attachments::find(inputs, femur, tibia);
+  const std::set<int> taken(found.tibia.vertices.begin(), found.tibia.vertices.end());
+  int inside = 0;
+  for (Eigen::Index v = 0; v < tube().surface.V.rows(); ++v) {
+    const double z = tube().surface.V(v, 2);
+    if (z < 7.9) {
+      EXPECT_TRUE(taken.count(static_cast<int>(v))) << "vertex " << v << " at z " << z;
+      ++inside;
+    }
+    if (z > 9.1)
+      EXPECT_FALSE(taken.count(static_cast<int>(v))) << "vertex " << v << " at z " << z;
+  }
+  EXPECT_GT(inside, 20);
+  ASSERT_EQ(found.tibia.corrections.size(), 1u);
+  EXPECT_NE(found.tibia.corrections[0].find("inside the bone"), std::string::npos);
+
+  // An open bone has no inside: only the vertices within 1 mm of it.
+  const TriangleSurface open = box_bone(8.0, true);
+  inputs.tibia = &open;
+  const auto near_only = attachments::find(inputs, femur, tibia);
+  for (int v : near_only.tibia.vertices) {
+    const Eigen::Vector3d p = tube().surface.V.row(v).transpose();
+    EXPECT_TRUE(p.z() < 0.01 || p.z() > 6.99) << "vertex " << v << " at z " << p.z();
+  }
+  EXPECT_TRUE(near_only.tibia.corrections.empty());
 }
 
 TEST(Footprints, ALandmarkThatMissesTheLigamentSnapsToItsEnd)
