@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -174,22 +175,24 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
 void print_table(const std::vector<sim::LigamentSweep>& sweeps,
                  const std::vector<sim::LigamentModel>& ligaments)
 {
-  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>9} {:>4}\n",
-             "ligament", "angle", "femur_N", "distal_N", "contact_N", "energy_mJ", "mean_%",
-             "max_%", "region_%", "dL_mm", "dL_%", "conv");
+  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>9} {:>4}\n",
+             "ligament", "angle", "femur_N", "net_N", "distal_N", "contact_N", "energy_mJ",
+             "mean_%", "max_%", "region_%", "dL_mm", "dL_%", "conv");
   for (std::size_t l = 0; l < sweeps.size(); ++l)
     for (const sim::AngleResult& a : sweeps[l].result.angles) {
       double contact = 0.0;
       for (const sim::BoneContact& bone : a.contact)
         contact += bone.in_solve ? bone.force_n.norm() : 0.0;
-      fmt::print("{:<8} {:>6} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} {:>8.2f} {:>8.2f} "
-                 "{:>8.2f} {:>9.2f} {:>4}\n",
+      fmt::print("{:<8} {:>6} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} {:>8.2f} "
+                 "{:>8.2f} {:>8.2f} {:>9.2f} {:>4}\n",
                  sweeps[l].name, sim::angle_label(a.angle_deg), a.femur_force_n.norm(),
-                 a.tibia_force_n.norm(), contact, a.strain_energy_mj,
-                 100.0 * (a.mean_fiber_stretch - 1.0), 100.0 * (a.max_fiber_stretch - 1.0),
-                 100.0 * (a.max_regional_fiber_stretch - 1.0), a.length_change_mm,
-                 a.length_change_pct, a.converged ? "yes" : "no");
+                 sim::femur_net_force(a).norm(), a.tibia_force_n.norm(), contact,
+                 a.strain_energy_mj, 100.0 * (a.mean_fiber_stretch - 1.0),
+                 100.0 * (a.max_fiber_stretch - 1.0), 100.0 * (a.max_regional_fiber_stretch - 1.0),
+                 a.length_change_mm, a.length_change_pct, a.converged ? "yes" : "no");
     }
+  fmt::print("(femur_N: the femoral footprint's reaction; net_N: with the femur's contact, the "
+             "ligament's whole pull on the femur)\n");
   if (ligaments.size() > 1)
     fmt::print("(distal_N: the force on the bone of the distal footprint: {})\n", [&] {
       std::string text;
@@ -273,7 +276,21 @@ void run_flexion(const FlexionJobOptions& options)
   ensure_directory(options.out);
   if (free) {
     sim::write_kinematics_csv(free->found, motion.jcs, options.out / "kinematics.csv");
+    sim::write_kinematics_plot(free->found, options.out / "kinematics.svg");
     summary.results()["free"] = sim::to_json(free->found, motion.jcs);
+    if (free->seat) {
+      const sim::ArticularContact::Seat& seat = *free->seat;
+      const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; };
+      summary.results()["free"]["articular_seat"] = {
+          {"medial_gap_mm", seat.medial_gap_mm},
+          {"lateral_gap_mm", seat.lateral_gap_mm},
+          {"medial_built_separation_mm", finite(seat.medial_built_mm)},
+          {"lateral_built_separation_mm", finite(seat.lateral_built_mm)}};
+      log_info(fmt::format("articular contact: the layers meet at {:.2f} mm medially and {:.2f} "
+                           "mm laterally (the bones' separation as built: {:.2f} and {:.2f} mm)",
+                           seat.medial_gap_mm, seat.lateral_gap_mm, seat.medial_built_mm,
+                           seat.lateral_built_mm));
+    }
     log_free_path(free->found);
   }
   std::vector<sim::OutputLigament> parts;

@@ -20,8 +20,8 @@ namespace {
 
 /// Bumped when a stage's algorithm changes, so old caches are not trusted (2: OpenVDB voxelize;
 /// 3: sparse grids passed between the stages as .vdb files; 4: bones repaired into one closed
-/// shell).
-constexpr const char* kAlgorithmVersion = "ligsim-build-5";
+/// shell; 6: a proximity footprint takes the ligament inside a closed bone).
+constexpr const char* kAlgorithmVersion = "ligsim-build-6";
 
 const Stage& find_stage(const std::string& name)
 {

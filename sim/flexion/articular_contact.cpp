@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ligsim::sim {
@@ -32,30 +33,41 @@ ArticularContact::ArticularContact(const TriangleSurface& femur, const DistanceF
   m_stiffness =
       (1.0 - nu) * settings.modulus_mpa / ((1.0 + nu) * (1.0 - 2.0 * nu)) / settings.thickness_mm;
   // The condyles: the femur within 60 mm of the knee's centre (the rest lies far from any tibia).
+  const Eigen::Vector3d e1 = joint_axes(jcs).col(0);
+  const double side = jcs.side >= 0 ? 1.0 : -1.0;
   for (Eigen::Index f = 0; f < femur.F.rows(); ++f) {
     const Eigen::Vector3d a = femur.V.row(femur.F(f, 0)), b = femur.V.row(femur.F(f, 1)),
                           c = femur.V.row(femur.F(f, 2));
     const Eigen::Vector3d centre = (a + b + c) / 3.0;
     if ((centre - jcs.origin_mm).norm() > 60.0)
       continue;
-    m_samples.push_back({centre, 0.5 * (b - a).cross(c - a).norm()});
+    const bool medial = side * (centre - jcs.origin_mm).dot(e1) < 0.0;
+    m_samples.push_back({centre, 0.5 * (b - a).cross(c - a).norm(), medial});
+    double& built = medial ? m_seat.medial_built_mm : m_seat.lateral_built_mm;
+    if (tibia.distance_bound(centre) <= kMaxSeatMm)
+      built = std::min(built, tibia.sample(centre, false).distance_mm);
   }
+  const auto gap = [&](double built) {
+    return settings.seated && built <= kMaxSeatMm ? std::max(settings.gap_mm, built)
+                                                  : settings.gap_mm;
+  };
+  m_seat.medial_gap_mm = gap(m_seat.medial_built_mm);
+  m_seat.lateral_gap_mm = gap(m_seat.lateral_built_mm);
+  for (Sample& sample : m_samples)
+    sample.gap_mm = sample.medial ? m_seat.medial_gap_mm : m_seat.lateral_gap_mm;
 }
 
 ArticularState ArticularContact::evaluate(const FreePose& pose) const
 {
   ArticularState state;
-  const double gap = m_settings.gap_mm;
-  const Eigen::Vector3d e1 = joint_axes(m_jcs).col(0);
-  const double side = m_jcs.side >= 0 ? 1.0 : -1.0;
   double medial_weight = 0.0, lateral_weight = 0.0;
   Eigen::Vector3d medial_sum = Eigen::Vector3d::Zero(), lateral_sum = Eigen::Vector3d::Zero();
   for (const Sample& s : m_samples) {
     const Eigen::Vector3d p = pose.point(s.rest_mm);
-    if (m_tibia.distance_bound(p) >= gap)
+    if (m_tibia.distance_bound(p) >= s.gap_mm)
       continue;
     const DistanceSample d = m_tibia.sample(p, true);
-    const double delta = gap - d.distance_mm;
+    const double delta = s.gap_mm - d.distance_mm;
     if (delta <= 0.0)
       continue;
     const Matrix35d J = pose.jacobian(s.rest_mm);
@@ -72,7 +84,7 @@ ArticularState ArticularContact::evaluate(const FreePose& pose) const
     state.moment_nmm += (p - m_jcs.origin_mm).cross(force);
     state.area_mm2 += s.area_mm2;
     state.max_pressure_mpa = std::max(state.max_pressure_mpa, m_stiffness * delta);
-    const bool medial = side * (p - m_jcs.origin_mm).dot(e1) < 0.0;
+    const bool medial = s.medial;
     (medial ? state.medial_force_n : state.lateral_force_n) += force;
     (medial ? medial_sum : lateral_sum) += force.norm() * on_tibia;
     (medial ? medial_weight : lateral_weight) += force.norm();

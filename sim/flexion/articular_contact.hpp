@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <vector>
 
 namespace ligsim::sim {
@@ -23,7 +24,15 @@ struct ArticularSettings {
   double thickness_mm = 4.0; ///< the two layers together
   double gap_mm = 0.0;       ///< distance at which the layers meet (0: the surfaces as given are
                              ///< the cartilage's, as the HRA femur's articular sheet)
+  /// The knee as built is seated: in each compartment the layers meet at the bones' smallest
+  /// separation in the built pose (at least gap_mm; up to kMaxSeatMm), which the cartilage and
+  /// menisci a surface atlas leaves out fill.
+  bool seated = true;
 };
+
+/// A compartment whose bones stand farther apart than this in the built pose is not seated:
+/// cartilage and meniscus together are 5-8 mm thick at the plateau's rim, not at its contact.
+constexpr double kMaxSeatMm = 5.0;
 
 /// Throws InputError naming the first setting that cannot work.
 void validate(const ArticularSettings& settings);
@@ -52,6 +61,13 @@ public:
                    const JointCoordinateSystem& jcs, const ArticularSettings& settings);
 
   ArticularState evaluate(const FreePose& pose) const;
+  /// Where each compartment's layers meet (mm): gap_mm, or the built pose's separation when
+  /// seated; and that separation itself (infinite where the femur has no sample near the tibia).
+  struct Seat {
+    double medial_gap_mm = 0.0, lateral_gap_mm = 0.0;
+    double medial_built_mm = INFINITY, lateral_built_mm = INFINITY;
+  };
+  const Seat& seat() const { return m_seat; }
   /// Foundation stiffness K / h, N/mm^3.
   double stiffness() const { return m_stiffness; }
 
@@ -59,12 +75,15 @@ private:
   struct Sample {
     Eigen::Vector3d rest_mm;
     double area_mm2;
+    bool medial; ///< its compartment, from its rest position
+    double gap_mm = 0.0;
   };
   std::vector<Sample> m_samples;
   const DistanceField& m_tibia;
   JointCoordinateSystem m_jcs;
   ArticularSettings m_settings;
   double m_stiffness = 0.0;
+  Seat m_seat;
 };
 
 } // namespace ligsim::sim

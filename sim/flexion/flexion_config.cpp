@@ -149,6 +149,7 @@ void read_articular(TomlTable& table, FreeKneeSettings& free)
   a.poisson = table.number("poisson", a.poisson);
   a.thickness_mm = table.number("thickness_mm", a.thickness_mm);
   a.gap_mm = table.number("gap_mm", a.gap_mm);
+  a.seated = table.boolean("seated", a.seated);
   try {
     validate(a);
   } catch (const InputError& e) {

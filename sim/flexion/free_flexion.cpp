@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
+#include "common/svg_plot.hpp"
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/flexion/knee_sweep.hpp"
 
@@ -73,6 +74,7 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
     tibia = BoneLevelSet::cached(tibia_surface, grid, contact_cache / "tibia_articular.vdb");
     articular = std::make_unique<ArticularContact>(triangle_surface(model.femur, "femur.vtp"),
                                                    *tibia, motion.jcs, settings.free.articular);
+    free.seat = articular->seat();
   }
   free.found = find_free_path(held, articular.get(), motion.jcs, motion.angles_deg, settings.free);
   std::vector<double> angles;
@@ -124,6 +126,33 @@ void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSys
         at.residual_moment_nmm, at.converged ? 1 : 0, at.iterations);
   }
   write_text_atomically(file, text);
+}
+
+void write_kinematics_plot(const FreeFemurResult& found, const fs::path& file)
+{
+  PlotSpec plot;
+  plot.title = "The knee's own path against the passive cadaver knee's (Walker et al. 1988)";
+  plot.x_label = "flexion angle (deg)";
+  plot.y_label = "tibia relative to the femur (deg)";
+  PlotSeries rotation{"internal rotation, this knee", {}, {}, {}};
+  PlotSeries varus{"varus, this knee", {}, {}, {}};
+  for (const FreeAngle& at : found.angles) {
+    rotation.x.push_back(at.angle_deg);
+    rotation.y.push_back(at.pose.internal_rotation_deg);
+    varus.x.push_back(at.angle_deg);
+    varus.y.push_back(at.pose.varus_deg);
+  }
+  PlotSeries walker_rotation{"internal rotation, Walker 1988", {}, {}, {}};
+  PlotSeries walker_varus{"varus, Walker 1988", {}, {}, {}};
+  for (double angle = 0.0; angle <= 120.0; angle += 5.0) {
+    const JointPose passive = passive_coupling(angle, false);
+    walker_rotation.x.push_back(angle);
+    walker_rotation.y.push_back(passive.internal_rotation_deg);
+    walker_varus.x.push_back(angle);
+    walker_varus.y.push_back(passive.varus_deg);
+  }
+  plot.series = {rotation, walker_rotation, varus, walker_varus};
+  write_text_atomically(file, svg_line_plot(plot));
 }
 
 nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs)

@@ -3,6 +3,7 @@
 /// (free_femur.hpp), then the sweep along it as along any path, so that every output of a
 /// prescribed sweep comes the same way; and kinematics.csv, what the knee did.
 
+#include "sim/flexion/articular_contact.hpp"
 #include "sim/flexion/free_femur.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 namespace ligsim::sim {
@@ -19,6 +21,8 @@ struct FreeFlexion {
   /// `motion` with the path the knee found (a table of its poses by flexion angle); when the
   /// search stopped, the angles it reached.
   KneeMotion motion;
+  /// Where the articular layers met per compartment (with articular contact).
+  std::optional<ArticularContact::Seat> seat;
 };
 
 /// Whether the knee flexes free by default ([motion] path = "auto"): it has both collateral and
@@ -37,6 +41,10 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
 /// origin, mm), and the femur's residual force and moment. Written atomically.
 void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSystem& jcs,
                           const std::filesystem::path& file);
+
+/// kinematics.svg: the found varus and internal rotation against flexion, beside the passive
+/// cadaver knee's mean path (Walker et al., J Biomech 1988;21:965: sim/kinematics/knee_path.hpp).
+void write_kinematics_plot(const FreeFemurResult& found, const std::filesystem::path& file);
 
 nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs);
 

@@ -293,6 +293,11 @@ TEST(KneeCli, TheFreeKneesPathReplayedAsATableGivesItsForcesAndACutLigamentChang
                            "medial_mm", "proximal_mm", "medial_contact_force_n",
                            "lateral_contact_force_n", "residual_force_n", "residual_moment_nmm"})
     EXPECT_NE(std::find(header.begin(), header.end(), name), header.end()) << name;
+  // The found path drawn beside the passive cadaver knee's.
+  std::ifstream svg(free / "kinematics.svg");
+  const std::string plot{std::istreambuf_iterator<char>(svg), std::istreambuf_iterator<char>()};
+  EXPECT_NE(plot.find("internal rotation, this knee"), std::string::npos);
+  EXPECT_NE(plot.find("Walker 1988"), std::string::npos);
   const nlohmann::json summary = read_json(free / "summary.json");
   for (const nlohmann::json& angle : summary["results"]["free"]["angles"]) {
     EXPECT_TRUE(angle["converged"].get<bool>()) << angle.dump();

@@ -70,3 +70,54 @@ TEST(ArticularContact, ItsDerivativesInTheFreeCoordinatesAreExact)
     EXPECT_LT((at.hessian.col(k) - column).norm(), 1e-4 * at.hessian.norm()) << k;
   }
 }
+
+TEST(ArticularContact, ASeatedKneeMeetsInBothCompartmentsWhereItWasBuilt)
+{
+  // Two 15 mm condyles over the tibia's plane z = 0: the medial one (x < 0) 1 mm above it, the
+  // lateral one 3 mm above, as an atlas without tibial cartilage and menisci leaves them.
+  const double radius = 15.0;
+  const ligsim::TriangleSurface medial =
+      sphere_surface(Eigen::Vector3d(-20.0, 0.0, radius + 1.0), radius, 6);
+  const ligsim::TriangleSurface lateral =
+      sphere_surface(Eigen::Vector3d(20.0, 0.0, radius + 3.0), radius, 6);
+  ligsim::TriangleSurface condyles;
+  condyles.V.resize(medial.V.rows() + lateral.V.rows(), 3);
+  condyles.V << medial.V, lateral.V;
+  condyles.F.resize(medial.F.rows() + lateral.F.rows(), 3);
+  condyles.F << medial.F, lateral.F.array() + static_cast<int>(medial.V.rows());
+  const PlaneDistance tibia(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+
+  ArticularSettings settings;
+  const ArticularContact seated(condyles, tibia, knee(), settings);
+  // Each compartment meets where it stood (the lowest triangle's centroid sits a chord's sag
+  // above the sphere's bottom).
+  EXPECT_NEAR(seated.seat().medial_built_mm, 1.0, 0.1);
+  EXPECT_NEAR(seated.seat().lateral_built_mm, 3.0, 0.1);
+  EXPECT_EQ(seated.seat().medial_gap_mm, seated.seat().medial_built_mm);
+  EXPECT_EQ(seated.seat().lateral_gap_mm, seated.seat().lateral_built_mm);
+  EXPECT_EQ(seated.evaluate(FreePose(knee(), 0.0, Vector5d::Zero())).energy_nmm, 0.0);
+  // The femur 0.4 mm down the tibial axis: both compartments carry the foundation's force.
+  Vector5d down = Vector5d::Zero();
+  down(4) = 0.4;
+  const ArticularState pressed = seated.evaluate(FreePose(knee(), 0.0, down));
+  const double expected = seated.stiffness() * M_PI * radius * 0.4 * 0.4;
+  EXPECT_NEAR(pressed.medial_force_n.z(), expected, 0.05 * expected);
+  EXPECT_NEAR(pressed.lateral_force_n.z(), expected, 0.05 * expected);
+
+  // Not seated: the same pose leaves both condyles off the plane.
+  settings.seated = false;
+  const ArticularContact as_given(condyles, tibia, knee(), settings);
+  EXPECT_EQ(as_given.seat().medial_gap_mm, 0.0);
+  EXPECT_EQ(as_given.evaluate(FreePose(knee(), 0.0, down)).energy_nmm, 0.0);
+  // A stated gap larger than the built separation is kept; a compartment farther apart than
+  // kMaxSeatMm is not seated.
+  settings.seated = true;
+  settings.gap_mm = 2.0;
+  const ArticularContact wider(condyles, tibia, knee(), settings);
+  EXPECT_EQ(wider.seat().medial_gap_mm, 2.0);
+  EXPECT_EQ(wider.seat().lateral_gap_mm, wider.seat().lateral_built_mm);
+  const ligsim::TriangleSurface far =
+      sphere_surface(Eigen::Vector3d(20.0, 0.0, radius + kMaxSeatMm + 1.0), radius, 6);
+  const ArticularContact lifted(far, tibia, knee(), ArticularSettings{});
+  EXPECT_EQ(lifted.seat().lateral_gap_mm, 0.0);
+}

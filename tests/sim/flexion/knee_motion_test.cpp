@@ -366,6 +366,29 @@ fs::path pose_table(const std::string& name, const std::vector<JointPose>& poses
 
 } // namespace
 
+TEST(Plausibility, AFootprintsReactionThatContactCancelsIsNoLoad)
+{
+  // The femur's footprint pulls with 900 N (past the MCL's 799 N) while the femur pushes back
+  // on the ligament beside it with 850 N: the ligament carries 50 N, and no warning is given.
+  const KneeModel model = bar_knee();
+  FlexionSettings settings;
+  const PlausibilityContext context{settings.ligament,
+                                    footprints(model, {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
+                                    settings.in_situ_strain};
+  AngleResult angle;
+  angle.femur_force_n = Eigen::Vector3d(900.0, 0.0, 0.0);
+  BoneContact femur;
+  femur.bone = "femur";
+  femur.force_n = Eigen::Vector3d(-850.0, 0.0, 0.0);
+  angle.contact = {femur};
+  EXPECT_TRUE(plausibility_warnings(angle, context).empty());
+  angle.contact.front().force_n.setZero();
+  const std::vector<std::string> loaded = plausibility_warnings(angle, context);
+  ASSERT_EQ(loaded.size(), 1U);
+  EXPECT_NE(loaded.front().find("the femur pulls on the MCL with 900 N"), std::string::npos)
+      << loaded.front();
+}
+
 TEST(KneeMotion, APoseTableReproducesTheRigidMotionItWasMadeFrom)
 {
   const KneeModel model = bar_knee();
