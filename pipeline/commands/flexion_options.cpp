@@ -114,6 +114,11 @@ sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const 
     settings.interactive.time_step_s = *options.time_step;
   if (!options.contact.empty())
     settings.contact.enabled = options.contact == "on";
+  if (job != "flexion" && settings.motion.path == sim::MotionSettings::Path::free)
+    fail("{}: a free knee's path is found by `ligsim flexion`, which writes it as "
+         "kinematics.csv; give that path here as a table: [motion] path = \"table\", table = "
+         "\"<the flexion's output>/kinematics.csv\"",
+         job);
   sim::validate(settings);
   return settings;
 }

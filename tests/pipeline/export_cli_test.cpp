@@ -130,6 +130,19 @@ TEST(ExportCli, FebioPenaltyIsWrittenAndMustBePositive)
   EXPECT_FALSE(fs::exists(bad));
 }
 
+TEST(ExportCli, AFreeKneesPathIsExportedAsItsTableNotFoundAgain)
+{
+  const fs::path config = fresh_folder("export_free.toml");
+  std::ofstream(config) << "[motion]\npath = \"free\"\n";
+  const fs::path out = fresh_folder("export_free") / "band.feb";
+  const CliResult refused =
+      run_ligsim("export febio --model " + band_model().string() + " " + band_axis() +
+                 " --config " + config.string() + " --out " + out.string());
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.stderr_text.find("kinematics.csv"), std::string::npos) << refused.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(ExportCli, RejectsAnOutputThatIsNotAFebFile)
 {
   const fs::path out = fresh_folder("export_bad") / "band.txt";
