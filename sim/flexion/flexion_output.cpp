@@ -30,6 +30,7 @@ std::string step_label(const AngleResult& angle)
 
 nlohmann::json angle_json(const AngleResult& angle)
 {
+  const Eigen::Vector3d femur_net = femur_net_force(angle);
   nlohmann::json entry = {{"angle_deg", angle.angle_deg},
                           {"converged", angle.converged},
                           {"strain_energy_mj", angle.strain_energy_mj},
@@ -40,8 +41,8 @@ nlohmann::json angle_json(const AngleResult& angle)
                           {"volume_beyond_failure_strain", angle.failed_volume_fraction},
                           {"femur_force_n", json_vector3(angle.femur_force_n)},
                           {"femur_force_magnitude_n", angle.femur_force_n.norm()},
-                          {"femur_net_force_n", json_vector3(femur_net_force(angle))},
-                          {"femur_net_force_magnitude_n", femur_net_force(angle).norm()},
+                          {"femur_net_force_n", json_vector3(femur_net)},
+                          {"femur_net_force_magnitude_n", femur_net.norm()},
                           {"tibia_force_n", json_vector3(angle.tibia_force_n)},
                           {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
                           {"newton_iterations", angle.newton_iterations},

@@ -360,13 +360,19 @@ SweepResult run_flexion_sweep(const HyperelasticBody& body, const BoundaryCondit
   return sweep;
 }
 
+Eigen::Vector3d net_force(const AngleResult& angle, const std::string& bone,
+                          const Eigen::Vector3d& footprint_n)
+{
+  Eigen::Vector3d net = footprint_n;
+  for (const BoneContact& contact : angle.contact)
+    if (contact.bone == bone && contact.in_solve)
+      net += contact.force_n;
+  return net;
+}
+
 Eigen::Vector3d femur_net_force(const AngleResult& angle)
 {
-  Eigen::Vector3d net = angle.femur_force_n;
-  for (const BoneContact& bone : angle.contact)
-    if (bone.bone == "femur" && bone.in_solve)
-      net += bone.force_n;
-  return net;
+  return net_force(angle, "femur", angle.femur_force_n);
 }
 
 } // namespace ligsim::sim

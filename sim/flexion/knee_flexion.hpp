@@ -103,10 +103,15 @@ struct AngleResult {
   Eigen::VectorXd pressure_mpa;
 };
 
-/// What the femur exerts on the ligament through its footprint and by contact together (minus
-/// the ligament's whole pull on the femur, the in-situ force a robot's superposition measures).
-/// Beside a footprint the two can cancel: an atlas ligament segmented into its bone is pushed out
-/// beside its bound rim, and the rim's reaction holds that contact.
+/// What `bone` exerts on the ligament through its footprint (`footprint_n`: the angle's
+/// femur_force_n or tibia_force_n) and by contact together: minus the ligament's whole pull on
+/// the bone, the in-situ force a robot's superposition measures. Beside a footprint the two can
+/// cancel: an atlas ligament segmented into its bone is pushed out beside its bound rim, and the
+/// rim's reaction holds that contact.
+Eigen::Vector3d net_force(const AngleResult& angle, const std::string& bone,
+                          const Eigen::Vector3d& footprint_n);
+
+/// net_force on the femur.
 Eigen::Vector3d femur_net_force(const AngleResult& angle);
 
 struct SweepResult {

@@ -125,18 +125,12 @@ std::vector<std::string> plausibility_warnings(const AngleResult& angle,
         100.0 * (angle.max_fiber_stretch - 1.0), 100.0 * (angle.max_regional_fiber_stretch - 1.0),
         ligament.strain_region_radius_mm, why_of(strain_causes)));
   }
-  // A bone's whole pull, footprint and contact (femur_net_force): beside a footprint the two can
+  // A bone's whole pull, footprint and contact (net_force): beside a footprint the two can
   // cancel, and the footprint's reaction alone would warn of a load the ligament does not carry.
   const std::string distal = context.footprints.size() > 1 ? context.footprints[1].bone : "tibia";
-  const auto with_contact = [&](const std::string& bone, Eigen::Vector3d force) {
-    for (const BoneContact& contact : angle.contact)
-      if (contact.bone == bone && contact.in_solve)
-        force += contact.force_n;
-    return force;
-  };
   for (const auto& [bone, force] :
-       {std::pair{std::string("femur"), with_contact("femur", angle.femur_force_n)},
-        std::pair{distal, with_contact(distal, angle.tibia_force_n)}})
+       {std::pair{std::string("femur"), femur_net_force(angle)},
+        std::pair{distal, net_force(angle, distal, angle.tibia_force_n)}})
     if (force.norm() > ligament.failure_load_n)
       warnings.push_back(fmt::format("the {} pulls on the {} with {:.0f} N, beyond its failure "
                                      "load of {:.0f} N{}",

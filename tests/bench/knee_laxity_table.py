@@ -2,6 +2,7 @@
 """Tables of tests/bench/knee_laxity.sh's runs: laxity (the change of a coordinate under a load,
 from the unloaded knee at the same angle) and the ACL cut's effect on the MCL's strain."""
 import csv
+import functools
 import json
 import sys
 from pathlib import Path
@@ -32,14 +33,17 @@ def ligament(run, name, angle):
                 None)
 
 
+@functools.lru_cache(maxsize=None)
+def summary_ligaments(run):
+    path = out / run / "summary.json"
+    return json.loads(path.read_text())["results"]["ligaments"] if path.exists() else None
+
+
 def net_force(run, name, angle):
     """The ligament's whole pull on the femur: footprint and contact (flexion.csv's
-    femur_net_force_n), from summary.json's vectors."""
-    path = out / run / "summary.json"
-    if not path.exists():
-        return None
-    ligaments = json.loads(path.read_text())["results"]["ligaments"]
-    if name not in ligaments:
+    femur_net_force_n), from summary.json's vectors (runs before that column have them too)."""
+    ligaments = summary_ligaments(run)
+    if ligaments is None or name not in ligaments:
         return None
     for a in ligaments[name]["angles"]:
         if a["angle_deg"] == angle:

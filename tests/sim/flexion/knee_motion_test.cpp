@@ -77,6 +77,13 @@ FlexionSettings epicondylar(const Eigen::Vector3d& medial, const Eigen::Vector3d
   return settings;
 }
 
+/// The plausibility context of bar_knee() turning about an axis through its femoral footprint.
+PlausibilityContext bar_context(const FlexionSettings& settings)
+{
+  return {settings.ligament, footprints(bar_knee(), {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
+          settings.in_situ_strain};
+}
+
 } // namespace
 
 TEST(KneeMotion, TransepicondylarAxisPointsTheWayThatFlexes)
@@ -322,11 +329,8 @@ TEST(Plausibility, APeakThatNoRegionSharesIsCalledLocal)
   // A few elements past the failure strain: called a local peak only where the strain averaged
   // over the measuring regions stays under it; the bar's axis is on its footprint, so nothing
   // else is blamed.
-  const KneeModel model = bar_knee();
-  FlexionSettings settings;
-  const PlausibilityContext context{settings.ligament,
-                                    footprints(model, {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
-                                    settings.in_situ_strain};
+  const FlexionSettings settings;
+  const PlausibilityContext context = bar_context(settings);
   AngleResult angle;
   angle.failed_volume_fraction = 2e-4;
   angle.max_fiber_stretch = 1.30;
@@ -370,11 +374,8 @@ TEST(Plausibility, AFootprintsReactionThatContactCancelsIsNoLoad)
 {
   // The femur's footprint pulls with 900 N (past the MCL's 799 N) while the femur pushes back
   // on the ligament beside it with 850 N: the ligament carries 50 N, and no warning is given.
-  const KneeModel model = bar_knee();
-  FlexionSettings settings;
-  const PlausibilityContext context{settings.ligament,
-                                    footprints(model, {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
-                                    settings.in_situ_strain};
+  const FlexionSettings settings;
+  const PlausibilityContext context = bar_context(settings);
   AngleResult angle;
   angle.femur_force_n = Eigen::Vector3d(900.0, 0.0, 0.0);
   BoneContact femur;
