@@ -6,6 +6,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "common/vtk_files.hpp"
 #include "pipeline/commands/anatomy_outputs.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/knee_build.hpp"
@@ -13,6 +14,8 @@
 #include "pipeline/stage_graph/label_inputs.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
+#include "sim/flexion/plausibility.hpp"
+#include "stages/io/vtk_convert.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -223,6 +226,25 @@ void report_anatomy(const fs::path& dir, bool picture)
     log_info("anatomy: not found: " + line);
 }
 
+/// Each built ligament's mean cross-section beside the published one, with a warning on stderr
+/// for one too thin to stand for the real ligament (sim::thin_ligament_finding).
+nlohmann::json report_thin_ligaments(const pipeline::KneeConfig& knee, const fs::path& out)
+{
+  nlohmann::json json = nlohmann::json::object();
+  for (const pipeline::LigamentConfig& ligament : knee.ligaments) {
+    const fs::path dir = out / ligament.name;
+    const auto thickness =
+        sim::ligament_thickness(pipeline::load_mesh(dir / pipeline::files::model),
+                                io::points_of(read_vtp(dir / pipeline::files::centerline)));
+    if (!thickness)
+      continue;
+    json[ligament.name] = sim::thickness_json(*thickness, ligament.name);
+    if (const auto finding = sim::thin_ligament_finding(ligament.name, *thickness))
+      log_info(fmt::format("warning: {}", *finding));
+  }
+  return json;
+}
+
 /// A knee config: every ligament built in its own folder of `o.out`, the flags over each.
 void run_knee_build_job(const BuildOptions& o, const std::string& target,
                         const nlohmann::json& found_by_name = nullptr)
@@ -274,8 +296,10 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
   if (!found_by_name.is_null())
     summary.results()["found_by_name"] = found_by_name;
   pipeline::build_knee(knee, out, target, o.force, summary);
-  if (target == "model")
+  if (target == "model") {
     report_anatomy(out, !o.no_images);
+    summary.results()["cross_sections"] = report_thin_ligaments(knee, out);
+  }
   summary.write(out);
   log_info(fmt::format("wrote {}", (out / "summary.json").string()));
 }

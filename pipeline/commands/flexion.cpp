@@ -164,6 +164,8 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
                          {"material", material_json(sweep.settings.material)},
                          {"in_situ_strain", sweep.settings.in_situ_strain},
                          {"success", result.success}};
+  if (sweep.thickness)
+    json["cross_section"] = sim::thickness_json(*sweep.thickness, ligament.name);
   if (sweep.settings.mode == sim::FlexionMode::interactive)
     json["frames_per_second"] = result.frames_per_second;
   if (!result.success)

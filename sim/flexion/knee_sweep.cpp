@@ -147,8 +147,14 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
     if (model.centerline.rows() >= 2)
       centerline.emplace(model.mesh, model.centerline);
     sweep.footprints = footprints(model, motion.axis.axis);
-    const PlausibilityContext plausibility{sweep.settings.ligament, sweep.footprints,
-                                           sweep.settings.in_situ_strain};
+    PlausibilityContext plausibility{sweep.settings.ligament, sweep.footprints,
+                                     sweep.settings.in_situ_strain};
+    sweep.thickness = ligament_thickness(model.mesh, model.centerline);
+    if (sweep.thickness) {
+      plausibility.thin = thin_ligament_finding(ligament.name, *sweep.thickness);
+      if (plausibility.thin)
+        log_info(fmt::format("warning: {}", *plausibility.thin));
+    }
     // Built with contact off as well: it measures how deep the ligament goes into the bones.
     const KneeContact contact(model, conditions, sweep.settings.contact, contact_cache);
     sweep.setup = {{"nodes", body.node_count()},

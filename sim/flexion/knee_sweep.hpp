@@ -41,6 +41,7 @@ struct LigamentSweep {
   FlexionSettings settings; ///< its own (ligament_settings)
   SweepResult result;
   std::vector<Footprint> footprints;
+  std::optional<LigamentThickness> thickness;        ///< none without a centerline
   nlohmann::json setup;                              ///< nodes, tets, volume, contact grids
   nlohmann::json warnings = nlohmann::json::array(); ///< plausibility, per angle
 };

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace ligsim::sim {
 
@@ -65,6 +66,67 @@ std::optional<PublishedArea> published_footprint_area(const std::string& ligamen
   return std::nullopt;
 }
 
+std::optional<PublishedCrossSection> published_cross_section(const std::string& ligament)
+{
+  // ACL: 20 cadaver knees, callipers at mid-substance (Siebold et al., Knee Surg Sports Traumatol
+  // Arthrosc 2015;23:3136). PCL: 1.5 times the ACL's at mid-substance within the same knees
+  // (Harner et al., J Orthop Res 1995;13:429). LCL: LaPrade et al., Am J Sports Med 2005.
+  if (ligament == "ACL")
+    return PublishedCrossSection{38.7, "Siebold et al. 2015, at mid-substance"};
+  if (ligament == "PCL")
+    return PublishedCrossSection{58.0, "1.5 times the ACL's 38.7, Harner et al. 1995"};
+  if (ligament == "LCL")
+    return PublishedCrossSection{11.9, "LaPrade et al. 2005"};
+  return std::nullopt;
+}
+
+std::optional<LigamentThickness> ligament_thickness(const TetMesh& mesh, const Points& centerline)
+{
+  if (centerline.rows() < 2)
+    return std::nullopt;
+  LigamentThickness thickness;
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.T(t, 0));
+    const Eigen::Vector3d b = mesh.V.row(mesh.T(t, 1));
+    const Eigen::Vector3d c = mesh.V.row(mesh.T(t, 2));
+    const Eigen::Vector3d d = mesh.V.row(mesh.T(t, 3));
+    thickness.volume_mm3 += std::abs((b - a).dot((c - a).cross(d - a))) / 6.0;
+  }
+  for (Eigen::Index p = 1; p < centerline.rows(); ++p)
+    thickness.centerline_mm += (centerline.row(p) - centerline.row(p - 1)).norm();
+  if (thickness.centerline_mm > 0.0)
+    thickness.mean_cross_section_mm2 = thickness.volume_mm3 / thickness.centerline_mm;
+  return thickness;
+}
+
+std::optional<std::string> thin_ligament_finding(const std::string& ligament,
+                                                 const LigamentThickness& thickness)
+{
+  const auto published = published_cross_section(ligament);
+  if (!published || !(thickness.mean_cross_section_mm2 > 0.0) ||
+      thickness.mean_cross_section_mm2 * 3.0 > published->mm2)
+    return std::nullopt;
+  return fmt::format("the {} as built is {:.1f} mm^2 in mean cross-section ({:.0f} mm^3 over its "
+                     "{:.1f} mm centerline), {:.1f} times under the published {:g} mm^2 ({}): its "
+                     "stiffness and forces are as much too small, and the knee's path leans on "
+                     "the other structures where the real one would hold it",
+                     ligament, thickness.mean_cross_section_mm2, thickness.volume_mm3,
+                     thickness.centerline_mm, published->mm2 / thickness.mean_cross_section_mm2,
+                     published->mm2, published->source);
+}
+
+nlohmann::json thickness_json(const LigamentThickness& thickness, const std::string& ligament)
+{
+  nlohmann::json json = {{"volume_mm3", thickness.volume_mm3},
+                         {"centerline_mm", thickness.centerline_mm},
+                         {"mean_cross_section_mm2", thickness.mean_cross_section_mm2}};
+  if (const auto published = published_cross_section(ligament))
+    json["published_cross_section_mm2"] = {{"mm2", published->mm2}, {"source", published->source}};
+  if (const auto finding = thin_ligament_finding(ligament, thickness))
+    json["finding"] = *finding;
+  return json;
+}
+
 std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axis)
 {
   const ContactSurface boundary = boundary_surface(model.mesh);
@@ -100,6 +162,8 @@ std::vector<std::string> plausibility_warnings(const AngleResult& angle,
                                    print.max_axis_distance_mm));
   if (context.in_situ_strain > 0.04)
     causes.push_back(fmt::format("an in-situ strain of {:.1f} %", 100.0 * context.in_situ_strain));
+  if (context.thin)
+    causes.push_back(*context.thin);
   const auto why_of = [](const std::vector<std::string>& listed) {
     return listed.empty() ? std::string()
                           : fmt::format("; likely causes: {}", fmt::join(listed, "; "));

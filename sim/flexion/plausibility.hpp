@@ -42,11 +42,36 @@ std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axi
 
 nlohmann::json footprints_json(const std::vector<Footprint>& prints, const std::string& ligament);
 
+/// A published mid-substance cross-section (mm^2) and its source; none for a ligament without
+/// one here.
+struct PublishedCrossSection {
+  double mm2 = 0.0;
+  std::string source;
+};
+std::optional<PublishedCrossSection> published_cross_section(const std::string& ligament);
+
+/// How thick the ligament was built: its volume over its centerline's length.
+struct LigamentThickness {
+  double volume_mm3 = 0.0;
+  double centerline_mm = 0.0;
+  double mean_cross_section_mm2 = 0.0;
+};
+/// None for a centerline of fewer than two points.
+std::optional<LigamentThickness> ligament_thickness(const TetMesh& mesh, const Points& centerline);
+
+/// A built ligament of a third of its published cross-section or less is too thin for its
+/// stiffness and forces to be a real one's: one line that says so, or none.
+std::optional<std::string> thin_ligament_finding(const std::string& ligament,
+                                                 const LigamentThickness& thickness);
+
+nlohmann::json thickness_json(const LigamentThickness& thickness, const std::string& ligament);
+
 /// What the sweep knows that may explain an implausible angle.
 struct PlausibilityContext {
   LigamentSettings ligament;
   std::vector<Footprint> footprints;
   double in_situ_strain = 0.0;
+  std::optional<std::string> thin; ///< thin_ligament_finding's line
 };
 
 /// The warnings of one angle (empty: plausible by these checks), each one line.

@@ -390,6 +390,36 @@ TEST(Plausibility, AFootprintsReactionThatContactCancelsIsNoLoad)
       << loaded.front();
 }
 
+TEST(Plausibility, ALigamentBuiltAThirdAsThickAsPublishedIsSaidToBeTooThin)
+{
+  // The bar: 4 x 4 x 20 mm on a 20 mm centerline, 16 mm^2 in mean cross-section.
+  const KneeModel knee = bar_knee();
+  const std::optional<LigamentThickness> bar = ligament_thickness(knee.mesh, knee.centerline);
+  ASSERT_TRUE(bar);
+  EXPECT_NEAR(bar->volume_mm3, 320.0, 1e-9);
+  EXPECT_NEAR(bar->centerline_mm, 20.0, 1e-12);
+  EXPECT_NEAR(bar->mean_cross_section_mm2, 16.0, 1e-9);
+  // As an ACL (38.7 mm^2 published) it is 2.4 times too thin: under the bar of three.
+  EXPECT_FALSE(thin_ligament_finding("ACL", *bar));
+  LigamentThickness thread = *bar;
+  thread.mean_cross_section_mm2 = 2.4;
+  const std::optional<std::string> thin = thin_ligament_finding("ACL", thread);
+  ASSERT_TRUE(thin);
+  EXPECT_NE(thin->find("16.1 times under the published 38.7 mm^2"), std::string::npos) << *thin;
+  EXPECT_FALSE(thin_ligament_finding("MCL", thread)) << "no published figure, no finding";
+  EXPECT_EQ(thickness_json(thread, "ACL").at("finding").get<std::string>(), *thin);
+
+  // The finding is given as a cause of a strain past failure.
+  PlausibilityContext context = bar_context(FlexionSettings{});
+  context.thin = thin;
+  AngleResult angle;
+  angle.failed_volume_fraction = 0.5;
+  angle.max_fiber_stretch = angle.max_regional_fiber_stretch = 1.5;
+  const std::vector<std::string> warnings = plausibility_warnings(angle, context);
+  ASSERT_EQ(warnings.size(), 1U);
+  EXPECT_NE(warnings.front().find(*thin), std::string::npos) << warnings.front();
+}
+
 TEST(KneeMotion, APoseTableReproducesTheRigidMotionItWasMadeFrom)
 {
   const KneeModel model = bar_knee();
