@@ -149,14 +149,29 @@ KneeFromLabels knee_from_labels(const fs::path& labels, const fs::path& colour_t
                            "proximal ends, and there are no femoral landmarks, no flexion axis "
                            "from the condyles and no contact with the femur");
 
+  // Cartilage joins the bone it covers: the bone's surface is then the cartilage's where the
+  // articular contact meets it (docs/flexion.md).
+  const std::map<KneePart, KneePart> covers = {{KneePart::femoral_cartilage, KneePart::femur},
+                                               {KneePart::tibial_cartilage, KneePart::tibia},
+                                               {KneePart::patellar_cartilage, KneePart::patella}};
+  std::map<KneePart, std::vector<const Label*>> cartilage_of;
   for (Label& label : found) {
     if (!label.part)
       label.taken_for = label.names.empty() ? "not recognised: no name" : "not recognised";
     else if (anatomy::is_bone(*label.part) || anatomy::is_ligament(*label.part))
       label.taken_for = anatomy::part_name(*label.part);
+    else if (covers.count(*label.part) && has(covers.at(*label.part))) {
+      const KneePart bone = covers.at(*label.part);
+      label.taken_for = fmt::format("{}: joined to the {} as its articular layer",
+                                    anatomy::part_name(*label.part), anatomy::part_name(bone));
+      cartilage_of[bone].push_back(&label);
+    } else if (covers.count(*label.part))
+      label.taken_for = fmt::format("not used: {} (no label names the bone it covers)",
+                                    anatomy::part_name(*label.part));
     else
-      label.taken_for =
-          "not used: " + anatomy::part_name(*label.part) + " (no articular contact in a build yet)";
+      label.taken_for = "not used: " + anatomy::part_name(*label.part) +
+                        " (menisci move and deform; fixed to the tibia they are no model of one: "
+                        "docs/knee-model.md)";
     result.labels.push_back({{"label", label.value},
                              {"names", label.names},
                              {"voxels", label.voxels},
@@ -183,9 +198,16 @@ KneeFromLabels knee_from_labels(const fs::path& labels, const fs::path& colour_t
   for (const auto& [part, key] :
        {std::pair{KneePart::femur, "femur_label"}, std::pair{KneePart::tibia, "tibia_label"},
         std::pair{KneePart::fibula, "fibula_label"}, std::pair{KneePart::patella, "patella_label"}})
-    if (has(part))
-      text += fmt::format("{} = {}  # {}\n", key, by_part.at(part)->value,
-                          quoted_names(*by_part.at(part)));
+    if (has(part)) {
+      std::string value = std::to_string(by_part.at(part)->value);
+      std::string names = quoted_names(*by_part.at(part));
+      for (const Label* cartilage : cartilage_of[part]) {
+        value += fmt::format("+{}", cartilage->value);
+        names += " + " + quoted_names(*cartilage);
+      }
+      text += cartilage_of[part].empty() ? fmt::format("{} = {}  # {}\n", key, value, names)
+                                         : fmt::format("{} = \"{}\"  # {}\n", key, value, names);
+    }
   for (const KneePart part : ligaments) {
     const std::string name = anatomy::part_name(part);
     const LigamentDefaults defaults = *ligament_defaults(name);

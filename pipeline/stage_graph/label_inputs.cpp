@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <vtkPolyData.h>
 
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -59,6 +60,37 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
           {"colour_tables", table_names}};
 }
 
+/// A bone's label, or several joined by '+' ("femur+femoral_cartilage", "2+7+8"): the bone with
+/// the cartilage on it, one part whose surface the articular contact meets. The labels' numbers,
+/// the bone's first.
+std::vector<int> part_labels(const LabelPart& part, const std::vector<labelmap::LabelName>& names)
+{
+  std::vector<int> labels;
+  std::size_t start = 0;
+  while (start <= part.label.size()) {
+    const std::size_t end = std::min(part.label.find('+', start), part.label.size());
+    const std::string piece = part.label.substr(start, end - start);
+    if (piece.empty())
+      fail("an empty label between '+' signs in '{}'", part.label);
+    labels.push_back(labelmap::resolve_label(piece, names, "label"));
+    start = end + 1;
+  }
+  if (labels.size() > 1 && !part.bone)
+    fail("'{}': only a bone's label joins others ('+'), to take its cartilage", part.label);
+  return labels;
+}
+
+/// `image` with the voxels of `labels` after the first given the first's value.
+labelmap::LabelImage joined(const labelmap::LabelImage& image, const std::vector<int>& labels)
+{
+  labelmap::LabelImage one = image;
+  const std::set<int> others(labels.begin() + 1, labels.end());
+  for (std::int32_t& voxel : one.labels)
+    if (others.count(voxel))
+      voxel = labels.front();
+  return one;
+}
+
 } // namespace
 
 std::vector<labelmap::LabelName> label_names(const fs::path& labels, const fs::path& colour_table,
@@ -95,15 +127,21 @@ nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colo
     labelmap::Selection selection;
     TriangleSurface surface;
     repair::Report repairs;
+    std::vector<int> values;
     try {
-      const int label = labelmap::resolve_label(part.label, names, "label");
+      values = part_labels(part, names);
       // A ligament's surface must not cross itself (it is refused if it does); a bone's is
       // repaired into one shell and only ever seen from outside.
-      surface = labelmap::label_surface(image, label, &selection, 30, !part.bone);
+      std::optional<labelmap::LabelImage> with_cartilage;
+      if (values.size() > 1)
+        with_cartilage = joined(image, values);
+      surface = labelmap::label_surface(with_cartilage ? *with_cartilage : image, values.front(),
+                                        &selection, 30, !part.bone);
       if (selection.contour != "smoothed")
         log_info(fmt::format("{}: the smoothed surface of label {} crossed itself ({}{} triangle "
                              "pairs); made again as the half level of the blurred mask",
-                             part.name, label, selection.crossing_pairs >= 16 ? "at least " : "",
+                             part.name, values.front(),
+                             selection.crossing_pairs >= 16 ? "at least " : "",
                              selection.crossing_pairs));
       // Voxels joined only by an edge or a corner, and parts thinner than the smoothing keeps,
       // give a bone's surface several shells: contact needs one.
@@ -117,6 +155,8 @@ nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colo
     }
     nlohmann::json& figures = report[part.name];
     figures = selection_json(selection, surface, names);
+    if (values.size() > 1)
+      figures["joined_labels"] = std::vector<int>(values.begin() + 1, values.end());
     if (part.bone) {
       const auto count = [&](const char* kind) {
         const repair::Repair* found = repairs.find(kind);

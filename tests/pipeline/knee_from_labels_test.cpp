@@ -280,6 +280,69 @@ TEST(KneeFromLabels, TheVhfMapBuildsAndSaysWhatItCannotFind)
   EXPECT_NE(flexed.stderr_text.find("has no femur"), std::string::npos) << flexed.stderr_text;
 }
 
+TEST(KneeFromLabels, CartilageLabelsJoinTheBonesTheyCover)
+{
+  // The synthetic knee's boxes with a 2 mm cartilage slab under the femur and two on the tibia
+  // (medial and lateral, as Slicer atlases split them), and a meniscus.
+  const fs::path dir = fresh_folder("named_cartilage_map");
+  fs::create_directories(dir);
+  write_knee_bones(dir);
+  write_straight_ligament(1.5, -6.0, dir / "MCL.vtp");
+  write_vtk(io::to_polydata(synthetic::box({-15, -10, 14.2}, {20, 10, 16.2})), dir / "fc.vtp");
+  write_vtk(io::to_polydata(synthetic::box({-15, -10, -0.2}, {-8, 10, 1.8})), dir / "mtc.vtp");
+  write_vtk(io::to_polydata(synthetic::box({1, -10, -0.2}, {9, 10, 1.8})), dir / "ltc.vtp");
+  write_vtk(io::to_polydata(synthetic::box({-7, 8, -0.2}, {0, 10, 1.8})), dir / "men.vtp");
+  write_vtk(io::to_polydata(synthetic::box({-16, -11, -15}, {21, 11, 31})), dir / "around.vtp");
+  std::string parts;
+  for (const auto& [file, label, name] :
+       {std::tuple{"femur.vtp", 1, "femur"}, std::tuple{"tibia.vtp", 2, "tibia"},
+        std::tuple{"fc.vtp", 3, "femoral_cartilage"},
+        std::tuple{"mtc.vtp", 4, "medial_tibial_cartilage"},
+        std::tuple{"ltc.vtp", 5, "lateral_tibial_cartilage"},
+        std::tuple{"men.vtp", 6, "medial_meniscus"}, std::tuple{"MCL.vtp", 7, "MCL"}})
+    parts += " --part " + (dir / file).string() + ":" + std::to_string(label) + ":" + name;
+  const fs::path map = dir / "seg.nrrd";
+  const CliResult made =
+      run_ligsim("labelmap --spacing 0.5 0.5 0.5 --margin 0 --around " +
+                 (dir / "around.vtp").string() + parts + " --out " + map.string());
+  ASSERT_EQ(made.exit_code, 0) << made.stderr_text;
+
+  const fs::path knee = fresh_folder("named_cartilage_knee");
+  const CliResult built = run_ligsim("build --labels " + map.string() + " --out " + knee.string() +
+                                     " --cell-size 1.0 --no-images");
+  ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
+  const std::string config = read_text(knee / "knee.toml");
+  EXPECT_NE(config.find("femur_label = \"1+3\""), std::string::npos) << config;
+  EXPECT_NE(config.find("tibia_label = \"2+4+5\""), std::string::npos) << config;
+  const nlohmann::json summary = read_json(knee / "summary.json")["results"];
+  std::map<int, std::string> taken;
+  for (const nlohmann::json& label : summary["found_by_name"]["labels"])
+    taken[label["label"].get<int>()] = label["taken_for"].get<std::string>();
+  EXPECT_EQ(taken[3], "femoral_cartilage: joined to the femur as its articular layer");
+  EXPECT_EQ(taken[4], "tibial_cartilage: joined to the tibia as its articular layer");
+  EXPECT_NE(taken[6].find("not used: meniscus"), std::string::npos) << taken[6];
+
+  // The bones' surfaces enclose their cartilage: the femur reaches down to the slab's underside
+  // (z = 14.2 mm, where the box alone ends at 16.2), the tibia up to 1.8 mm on both plateaus.
+  const nlohmann::json& map_report = summary["label_map"];
+  EXPECT_EQ(map_report["femur"]["joined_labels"], nlohmann::json::array({3}));
+  EXPECT_EQ(map_report["tibia"]["joined_labels"], nlohmann::json::array({4, 5}));
+  const TriangleSurface femur = io::read_surface(knee / "femur.vtp");
+  const TriangleSurface tibia = io::read_surface(knee / "tibia.vtp");
+  EXPECT_NEAR(femur.V.col(2).minCoeff(), 14.2, 0.5);
+  EXPECT_NEAR(tibia.V.col(2).maxCoeff(), 1.8, 0.5);
+  for (const double x : {-12.0, 5.0}) {
+    const auto top = [&](const TriangleSurface& s) {
+      double z = -1e9;
+      for (Eigen::Index v = 0; v < s.V.rows(); ++v)
+        if (std::abs(s.V(v, 0) - x) < 1.0 && std::abs(s.V(v, 1)) < 5.0)
+          z = std::max(z, s.V(v, 2));
+      return z;
+    };
+    EXPECT_NEAR(top(tibia), 1.8, 0.5) << "the plateau at x = " << x;
+  }
+}
+
 TEST(KneeFromLabels, MapsThatCannotMakeAKneeAreClearErrors)
 {
   // The synthetic knee's boxes and straight ligaments, named by the labels of each case.
