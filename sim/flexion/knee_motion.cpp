@@ -6,6 +6,7 @@
 #include "sim/kinematics/kinematics_csv.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 
 #include <cmath>
 
@@ -138,6 +139,61 @@ Eigen::Vector3d tibial_axis(const KneeModel& model, const Eigen::Vector3d& proxi
   return proximal;
 }
 
+/// How far the knee was flexed where it was built: the angle about the flexion axis from the
+/// tibia's long axis to the femoral shaft's (Grood & Suntay's flexion, 0 in full extension). The
+/// shaft is the line through the centroids of the femur's 10 mm slices from 60 to 200 mm above
+/// its distal end (the distal shaft, above the condyles and the metaphysis' flare), so a femur
+/// shorter than 120 mm is not measured. The angles a sweep names stay counted from the built pose.
+nlohmann::json built_flexion(const KneeModel& model, const Eigen::Vector3d& proximal,
+                             const JointCoordinateSystem& jcs)
+{
+  constexpr double from_mm = 60.0, to_mm = 200.0, slice_mm = 10.0;
+  constexpr int least_slices = 6;
+  if (!model.femur)
+    return {{"not_measured", "the knee has no femur"}};
+  const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
+  const Eigen::VectorXd height = femur.V * proximal;
+  const double distal = height.minCoeff();
+  std::vector<Eigen::Vector3d> centroids;
+  for (double low = distal + from_mm; low < distal + to_mm; low += slice_mm) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (Eigen::Index v = 0; v < femur.V.rows(); ++v)
+      if (height(v) >= low && height(v) < low + slice_mm) {
+        sum += femur.V.row(v).transpose();
+        ++count;
+      }
+    if (count >= 8)
+      centroids.push_back(sum / count);
+  }
+  if (static_cast<int>(centroids.size()) < least_slices)
+    return {{"not_measured",
+             fmt::format("the femur reaches {:.0f} mm above its distal end: its shaft shows from "
+                         "{:g} mm, and {:g} mm of it are needed",
+                         height.maxCoeff() - distal, from_mm, least_slices * slice_mm)}};
+  Eigen::MatrixX3d points(static_cast<Eigen::Index>(centroids.size()), 3);
+  for (std::size_t i = 0; i < centroids.size(); ++i)
+    points.row(static_cast<Eigen::Index>(i)) = centroids[i].transpose();
+  const Eigen::RowVector3d mean = points.colwise().mean();
+  const Eigen::MatrixX3d centred = points.rowwise() - mean;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(centred.transpose() * centred);
+  Eigen::Vector3d shaft = principal.eigenvectors().col(2);
+  if (shaft.dot(proximal) < 0.0)
+    shaft = -shaft;
+  // Both axes seen along the flexion axis; turning the femur positively about it flexes.
+  const Eigen::Vector3d e1 = jcs.flexion_axis.normalized();
+  const Eigen::Vector3d tibia = (jcs.tibial_axis - jcs.tibial_axis.dot(e1) * e1).normalized();
+  const Eigen::Vector3d femoral = (shaft - shaft.dot(e1) * e1).normalized();
+  const double angle = std::atan2(e1.dot(tibia.cross(femoral)), tibia.dot(femoral)) / degree;
+  return {{"flexion_deg", angle},
+          {"femoral_shaft", json_vector3(shaft)},
+          {"source", fmt::format("the tibia's long axis against the femoral shaft (the centroids "
+                                 "of {} slices of 10 mm, {:g} to {:g} mm above the femur's "
+                                 "distal end), about the flexion axis",
+                                 centroids.size(), from_mm, from_mm + slice_mm * centroids.size())},
+          {"note", "the angles swept are counted from the built pose"}};
+}
+
 KneePath knee_path(const FlexionSettings& settings, const KneeAnatomy& anatomy,
                    nlohmann::json& figures)
 {
@@ -244,6 +300,11 @@ KneeMotion resolve_knee_motion(const KneeModel& model, const FlexionSettings& se
   motion.jcs.flexion_axis = motion.axis.axis.direction;
   motion.jcs.tibial_axis = tibial_axis(model, proximal, motion.figures["tibial_axis"]);
   motion.jcs.side = anatomy.side_sign() < 0 ? -1 : 1;
+  motion.figures["built_pose"] = built_flexion(model, proximal, motion.jcs);
+  if (motion.figures["built_pose"].contains("flexion_deg"))
+    log_info(fmt::format("flexion: the knee was built at {:.1f} degrees of flexion (its femoral "
+                         "shaft against its tibia); the angles are counted from there",
+                         motion.figures["built_pose"]["flexion_deg"].get<double>()));
   motion.figures["side"] = anatomy.side.empty() ? "not known" : anatomy.side;
   motion.figures["frame_source"] = anatomy.frame_source;
 

@@ -420,6 +420,58 @@ TEST(Plausibility, ALigamentBuiltAThirdAsThickAsPublishedIsSaidToBeTooThin)
   EXPECT_NE(warnings.front().find(*thin), std::string::npos) << warnings.front();
 }
 
+TEST(KneeMotion, TheBuiltPoseIsMeasuredAsTheFemoralShaftAgainstTheTibia)
+{
+  // A femur 250 mm long (a tube of 12 mm radius from z = 21) over the tibia's box, standing
+  // straight and then turned by 10 degrees about the flexion axis: the knee as built at 0 and 10
+  // degrees of flexion. One 80 mm long has too little shaft to tell.
+  KneeModel model = bar_knee();
+  FlexionSettings settings = epicondylar({-38.0, 2.0, 22.0}, {42.0, 2.0, 22.0});
+  settings.anatomy.posterior = -Eigen::Vector3d::UnitY();
+  const auto femur_of = [](double length_mm, const Eigen::Isometry3d& pose) {
+    // Rings of 48 points every 5 mm, joined by triangles (open at its ends).
+    constexpr int around = 48;
+    const int rings = static_cast<int>(length_mm / 5.0) + 1;
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    for (int r = 0; r < rings; ++r)
+      for (int a = 0; a < around; ++a) {
+        const double phi = 2.0 * M_PI * a / around;
+        const Eigen::Vector3d p =
+            pose * Eigen::Vector3d(12.0 * std::cos(phi), 12.0 * std::sin(phi), 21.0 + 5.0 * r);
+        points->InsertNextPoint(p.x(), p.y(), p.z());
+      }
+    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    for (int r = 0; r + 1 < rings; ++r)
+      for (int a = 0; a < around; ++a) {
+        const vtkIdType p = r * around + a, q = r * around + (a + 1) % around;
+        const vtkIdType lower[3] = {p, q, q + around}, upper[3] = {p, q + around, p + around};
+        cells->InsertNextCell(3, lower);
+        cells->InsertNextCell(3, upper);
+      }
+    auto surface = vtkSmartPointer<vtkPolyData>::New();
+    surface->SetPoints(points);
+    surface->SetPolys(cells);
+    return surface;
+  };
+  model.femur = femur_of(250.0, Eigen::Isometry3d::Identity());
+  const KneeMotion straight = resolve_knee_motion(model, settings);
+  EXPECT_NEAR(straight.figures["built_pose"]["flexion_deg"].get<double>(), 0.0, 0.2);
+
+  const JointCoordinateSystem& jcs = straight.jcs;
+  const Eigen::Isometry3d flexed = Eigen::Translation3d(jcs.origin_mm) *
+                                   Eigen::AngleAxisd(10.0 * M_PI / 180.0, jcs.flexion_axis) *
+                                   Eigen::Translation3d(-jcs.origin_mm);
+  model.femur = femur_of(250.0, flexed);
+  const nlohmann::json built = resolve_knee_motion(model, settings).figures["built_pose"];
+  EXPECT_NEAR(built["flexion_deg"].get<double>(), 10.0, 0.3) << built.dump();
+
+  model.femur = femur_of(80.0, Eigen::Isometry3d::Identity());
+  const nlohmann::json short_femur = resolve_knee_motion(model, settings).figures["built_pose"];
+  EXPECT_FALSE(short_femur.contains("flexion_deg"));
+  EXPECT_NE(short_femur["not_measured"].get<std::string>().find("reaches 80 mm"), std::string::npos)
+      << short_femur.dump();
+}
+
 TEST(KneeMotion, APoseTableReproducesTheRigidMotionItWasMadeFrom)
 {
   const KneeModel model = bar_knee();
