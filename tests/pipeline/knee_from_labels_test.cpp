@@ -40,15 +40,77 @@ const char* kFemur =
     "VH_F_distal_most_point_of_medial_condyle_L+VH_F_lateral_condyle_of_femur_sup_L+"
     "VH_F_medial_condyle_of_left_femur_sup";
 
+/// The atlas has no tibial cartilage: its plateaus covered by 2 mm of it. The tibia's
+/// upward-facing triangles (normal within 45 degrees of +y) of its proximal 12 mm, less the middle
+/// fifth of their width (the intercondylar eminence, where the cruciates attach), extruded 2 mm
+/// along +y into a closed shell.
+TriangleSurface tibial_cartilage()
+{
+  const TriangleSurface tibia = io::read_surface(kKnee + "#VH_F_tibia_L");
+  const double top = tibia.V.col(1).maxCoeff();
+  std::vector<Eigen::Vector3i> plateau;
+  for (Eigen::Index f = 0; f < tibia.F.rows(); ++f) {
+    const Eigen::Vector3d a = tibia.V.row(tibia.F(f, 0)), b = tibia.V.row(tibia.F(f, 1)),
+                          c = tibia.V.row(tibia.F(f, 2));
+    if ((b - a).cross(c - a).normalized().y() > 0.7 && (a + b + c).y() / 3.0 > top - 12.0)
+      plateau.push_back(tibia.F.row(f).transpose());
+  }
+  double lo = 1e9, hi = -1e9;
+  for (const Eigen::Vector3i& f : plateau)
+    for (int k = 0; k < 3; ++k) {
+      lo = std::min(lo, tibia.V(f(k), 0));
+      hi = std::max(hi, tibia.V(f(k), 0));
+    }
+  std::map<int, int> index; // tibia vertex -> cartilage's lower vertex
+  std::vector<Eigen::Vector3i> lower;
+  for (const Eigen::Vector3i& f : plateau) {
+    const double x = (tibia.V(f(0), 0) + tibia.V(f(1), 0) + tibia.V(f(2), 0)) / 3.0;
+    if (std::abs(x - 0.5 * (lo + hi)) < 0.1 * (hi - lo))
+      continue;
+    Eigen::Vector3i g;
+    for (int k = 0; k < 3; ++k)
+      g(k) = index.emplace(f(k), static_cast<int>(index.size())).first->second;
+    lower.push_back(g);
+  }
+  const int n = static_cast<int>(index.size());
+  TriangleSurface shell;
+  shell.V.resize(2 * n, 3);
+  for (const auto& [from, to] : index) {
+    shell.V.row(to) = tibia.V.row(from);
+    shell.V.row(to + n) = tibia.V.row(from) + Eigen::RowVector3d(0.0, 2.0, 0.0);
+  }
+  std::map<std::pair<int, int>, int> edges;
+  for (const Eigen::Vector3i& f : lower)
+    for (int k = 0; k < 3; ++k)
+      ++edges[{f(k), f((k + 1) % 3)}];
+  std::vector<Eigen::Vector3i> faces;
+  for (const Eigen::Vector3i& f : lower) {
+    faces.emplace_back(f(0), f(2), f(1));             // the underside, facing down
+    faces.emplace_back(f(0) + n, f(1) + n, f(2) + n); // the top
+  }
+  for (const auto& [edge, count] : edges)
+    if (!edges.count({edge.second, edge.first})) { // a rim edge: a wall
+      faces.emplace_back(edge.first, edge.second, edge.second + n);
+      faces.emplace_back(edge.first, edge.second + n, edge.first + n);
+    }
+  shell.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    shell.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  return shell;
+}
+
 /// seg.nii.gz and knee.ctbl in a folder of their own: 497 x 550 x 113 voxels around the four
-/// ligaments with 25 mm to spare. The ligaments come last: where the atlas overlaps them with a
-/// bone, the ligament keeps the voxel.
+/// ligaments with 25 mm to spare. Later parts keep the voxels they share with earlier ones, as a
+/// segmentation labels each voxel once: the tibial cartilage comes first (the femur keeps what
+/// both would take) and the ligaments last.
 fs::path hra_label_map()
 {
   const fs::path dir = fresh_folder("hra_named_map");
   fs::create_directories(dir);
   write_vtk(io::to_polydata(synthetic::box({44, -482, -145}, {193, -317, -32})), dir / "box.vtp");
-  std::string parts;
+  write_vtk(io::to_polydata(tibial_cartilage()), dir / "tibial_cartilage.vtp");
+  std::string parts =
+      " --part \"" + (dir / "tibial_cartilage.vtp").string() + ":11:tibial_cartilage\"";
   for (const auto& [file, mesh, label, name] :
        {std::tuple{kKnee, std::string(kFemur), 1, "femur"},
         std::tuple{kKnee, std::string("VH_F_tibia_L"), 2, "tibia"},
@@ -147,7 +209,9 @@ TEST(KneeFromLabels, TheHraKneeIsBuiltFromItsNamesAloneAndFlexes)
   EXPECT_EQ(taken[9], "PCL");
   EXPECT_NE(taken[5].find("not used"), std::string::npos);
   EXPECT_EQ(taken[10], "not recognised");
+  EXPECT_EQ(taken[11], "tibial_cartilage: joined to the tibia as its articular layer");
   const std::string config = read_text(knee / "knee.toml");
+  EXPECT_NE(config.find("tibia_label = \"2+11\""), std::string::npos) << config;
   EXPECT_NE(config.find("10 'anterolateral_ligament': not recognised"), std::string::npos);
   EXPECT_NE(config.find("landmark = \"medial_epicondyle\""), std::string::npos);
 
@@ -212,6 +276,11 @@ TEST(KneeFromLabels, TheHraKneeIsBuiltFromItsNamesAloneAndFlexes)
                                       flexion.string() + " --angles 0,60,120 --no-images");
   ASSERT_EQ(flexed.exit_code, 0) << flexed.stderr_text;
   EXPECT_TRUE(fs::exists(flexion / "kinematics.csv"));
+  // The femur meets the tibial cartilage: the lateral compartment seats 2.20 mm apart as built,
+  // where the same map without the cartilage label seats it 2.86 mm apart (on the tibia's bone).
+  const nlohmann::json seat =
+      read_json(flexion / "summary.json")["results"]["free"]["articular_seat"];
+  EXPECT_LT(seat["lateral_built_separation_mm"].get<double>(), 2.5) << seat.dump();
   const std::vector<std::string> rows = lines(flexion / "flexion.csv");
   ASSERT_EQ(rows.size(), 1u + 4u * 3u);
   const auto column = [&](const std::string& name) {
