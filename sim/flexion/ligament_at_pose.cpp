@@ -75,8 +75,23 @@ bool LigamentAtPose::move_to(const JointPose& pose)
   m_segment->set(m_pose, pose);
   const Eigen::VectorXd saved = m_x;
   Eigen::VectorXd residual;
-  const StaticResult result = m_solver->solve(m_x, [&](const StepReport&, const Eigen::VectorXd&,
-                                                       const Eigen::VectorXd& r) { residual = r; });
+  const auto solve = [&] {
+    return m_solver->solve(m_x, [&](const StepReport&, const Eigen::VectorXd&,
+                                    const Eigen::VectorXd& r) { residual = r; });
+  };
+  // At the same flexion, from the pose the response was computed at: start from the
+  // equilibrium it predicts (the solve then needs fewer steps), and from the last one if that
+  // start cannot be solved (a predicted node inside a bone).
+  const bool predicted = m_response_pose && m_response_pose->flexion_deg == m_pose.flexion_deg &&
+                         free_coordinates(*m_response_pose) == free_coordinates(m_pose) &&
+                         pose.flexion_deg == m_pose.flexion_deg;
+  if (predicted)
+    m_x += m_response * (free_coordinates(pose) - free_coordinates(m_pose));
+  StaticResult result = solve();
+  if (!result.converged && predicted) {
+    m_x = saved;
+    result = solve();
+  }
   if (!result.converged) {
     m_x = saved;
     m_segment->set(m_pose, m_pose);
@@ -144,6 +159,8 @@ Matrix5d LigamentAtPose::stiffness(const FreePose& pose) const
   const CondensedStiffness S =
       condensed_stiffness(*m_body, m_conditions, m_x,
                           m_contact_on ? &m_contact->potential() : nullptr, 1.0, D, &coupling);
+  m_response = S.free_response;
+  m_response_pose = m_pose;
   Matrix5d K = S.matrix + curvature;
   return 0.5 * (K + K.transpose());
 }

@@ -65,6 +65,10 @@ private:
   std::unique_ptr<StaticSolver> m_solver;
   Eigen::VectorXd m_x, m_residual;
   JointPose m_pose;
+  /// The nodes' first-order response to the five coordinates at m_response_pose (stiffness()
+  /// computes it): move_to() starts a nearby pose's solve from it.
+  mutable Eigen::MatrixXd m_response;
+  mutable std::optional<JointPose> m_response_pose;
   int m_femur_obstacle = -1; ///< the femur's index among the contact's obstacles (-1: none)
   std::string m_failure;
 };

@@ -71,6 +71,9 @@ CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
       result.factor = "projected";
     result.matrix -= free_part.transpose() * U;
     result.matrix = 0.5 * (result.matrix + result.matrix.transpose()).eval();
+    result.free_response = Eigen::MatrixXd::Zero(D.rows(), m);
+    for (int f = 0; f < dofs.free_count(); ++f)
+      result.free_response.row(dofs.free_dofs()[static_cast<std::size_t>(f)]) = -U.row(f);
     return result;
   }
   fail<SolverError>("condensed stiffness: the free stiffness cannot be factorised, even "

@@ -24,6 +24,9 @@ struct CondensedStiffness {
   /// How K_ff was factorised: "exact", or "projected" when the exact one is not positive
   /// definite (past a buckling point): then `matrix` is that of the projected stiffness.
   std::string factor = "exact";
+  /// How the free DOFs follow each motion back to equilibrium, -K_ff^-1 B (#DOF x m; zero rows at
+  /// the prescribed DOFs): a first-order guess of the equilibrium after a small motion.
+  Eigen::MatrixXd free_response;
 };
 
 /// D^T S D at the equilibrium x of `body` in `conditions` (the free DOFs those leave), with the
