@@ -9,16 +9,24 @@
 
 namespace ligsim::sim {
 
-void validate(const ArticularSettings& s)
+std::optional<ArticularProblem> articular_problem(const ArticularSettings& s)
 {
   if (!(s.modulus_mpa > 0.0) || !std::isfinite(s.modulus_mpa))
-    fail("[articular] modulus_mpa must be positive, got {}", s.modulus_mpa);
+    return ArticularProblem{"modulus_mpa", fmt::format("must be positive, got {}", s.modulus_mpa)};
   if (!(s.poisson >= 0.0 && s.poisson < 0.5))
-    fail("[articular] poisson must be in [0, 0.5), got {}", s.poisson);
+    return ArticularProblem{"poisson", fmt::format("must be in [0, 0.5), got {}", s.poisson)};
   if (!(s.thickness_mm > 0.0) || !std::isfinite(s.thickness_mm))
-    fail("[articular] thickness_mm must be positive, got {}", s.thickness_mm);
+    return ArticularProblem{"thickness_mm",
+                            fmt::format("must be positive, got {}", s.thickness_mm)};
   if (!std::isfinite(s.gap_mm) || s.gap_mm < 0.0)
-    fail("[articular] gap_mm must be zero or positive, got {}", s.gap_mm);
+    return ArticularProblem{"gap_mm", fmt::format("must be zero or positive, got {}", s.gap_mm)};
+  return std::nullopt;
+}
+
+void validate(const ArticularSettings& s)
+{
+  if (const auto problem = articular_problem(s))
+    fail("[articular] {} {}", problem->key, problem->what);
 }
 
 ArticularContact::ArticularContact(const TriangleSurface& femur, const DistanceField& tibia,

@@ -14,6 +14,8 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace ligsim::sim {
@@ -33,6 +35,13 @@ struct ArticularSettings {
 /// A compartment whose bones stand farther apart than this in the built pose is not seated:
 /// cartilage and meniscus together are 5-8 mm thick at the plateau's rim, not at its contact.
 constexpr double kMaxSeatMm = 5.0;
+
+/// The first setting that cannot work: its key and what is wrong with it.
+struct ArticularProblem {
+  std::string key;
+  std::string what;
+};
+std::optional<ArticularProblem> articular_problem(const ArticularSettings& settings);
 
 /// Throws InputError naming the first setting that cannot work.
 void validate(const ArticularSettings& settings);

@@ -150,11 +150,8 @@ void read_articular(TomlTable& table, FreeKneeSettings& free)
   a.thickness_mm = table.number("thickness_mm", a.thickness_mm);
   a.gap_mm = table.number("gap_mm", a.gap_mm);
   a.seated = table.boolean("seated", a.seated);
-  try {
-    validate(a);
-  } catch (const InputError& e) {
-    table.fail_at("modulus_mpa", e.what());
-  }
+  if (const auto problem = articular_problem(a))
+    table.fail_at(problem->key, problem->what);
   table.reject_unknown_keys();
 }
 

@@ -61,6 +61,26 @@ TEST(FlexionConfig, ErrorsNameTheKey)
                ligsim::InputError);
 }
 
+TEST(FlexionConfig, ABadArticularValueNamesItsOwnKey)
+{
+  for (const auto& [text, key] : {std::pair{"[articular]\nmodulus_mpa = 0\n", "modulus_mpa"},
+                                  std::pair{"[articular]\npoisson = 0.6\n", "poisson"},
+                                  std::pair{"[articular]\nthickness_mm = -1\n", "thickness_mm"},
+                                  std::pair{"[articular]\ngap_mm = -0.5\n", "gap_mm"}}) {
+    FlexionSettings settings;
+    try {
+      parse_flexion_config(text, "/", "f.toml", settings);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const ligsim::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(key), std::string::npos) << what;
+      for (const char* other : {"modulus_mpa", "poisson", "thickness_mm", "gap_mm"})
+        if (std::string(other) != key)
+          EXPECT_EQ(what.find(other), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(FlexionConfig, ReadsContact)
 {
   FlexionSettings settings;
