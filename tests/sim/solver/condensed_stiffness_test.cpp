@@ -1,6 +1,7 @@
 /// The stiffness a body shows at its prescribed DOFs once its free ones re-equilibrate: the
 /// Schur complement along two motions of a cube's top face (a stretch and a shear), against
-/// central differences of the reactions of equilibria solved with the top moved.
+/// central differences of the reactions of equilibria solved with the top moved; and the free
+/// nodes' response to the motions, against the differences of those equilibria.
 
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
@@ -81,6 +82,19 @@ TEST(CondensedStiffness, ItIsTheDerivativeOfTheReactionsOnceTheBodyReequilibrate
       const double numeric = D.col(l).dot(plus - minus) / (2.0 * h);
       EXPECT_NEAR(S.matrix(l, k), numeric, 1e-5 * std::abs(numeric) + 1e-6) << l << " " << k;
     }
+  }
+  // How the free nodes follow each motion: the same differences of the equilibria themselves
+  // (zero at the prescribed DOFs, which the motion moves).
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d step = k == 0 ? Eigen::Vector3d(0, 0, h) : Eigen::Vector3d(h, 0, 0);
+    Eigen::VectorXd plus, minus;
+    reactions(body, base + step, &plus);
+    reactions(body, base - step, &minus);
+    const Eigen::VectorXd numeric = (plus - minus) / (2.0 * h) - D.col(k);
+    const Eigen::VectorXd response = S.free_response.col(k);
+    EXPECT_LT((response - numeric).cwiseAbs().maxCoeff(), 1e-5 * numeric.cwiseAbs().maxCoeff())
+        << "motion " << k;
+    EXPECT_GT(numeric.cwiseAbs().maxCoeff(), 0.05) << "the free nodes follow the motion";
   }
   // Symmetric and positive: pulling the top costs energy.
   EXPECT_NEAR(S.matrix(0, 1), S.matrix(1, 0), 1e-9 * S.matrix.norm());
