@@ -8,6 +8,7 @@
 #include "sim/contact/contact_potential.hpp"
 #include "sim/contact/contact_surface.hpp"
 #include "sim/scene/scene_output.hpp"
+#include "sim/solver/step_report_json.hpp"
 #include "stages/io/surface_reader.hpp"
 
 #include <fmt/format.h>
@@ -136,27 +137,7 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     const StaticResult result =
         solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
                             const Eigen::VectorXd& residual) {
-          nlohmann::json entry = {{"step", step.step},
-                                  {"load_factor", step.load_factor},
-                                  {"newton_iterations", step.iterations},
-                                  {"substeps", step.substeps},
-                                  {"cutbacks", step.cutbacks},
-                                  {"relative_residual", step.relative_residual},
-                                  {"strain_energy_mj", step.strain_energy_mj},
-                                  {"min_j", step.min_j},
-                                  {"min_j_element", step.min_j_element},
-                                  {"projected_elements", step.projected_elements},
-                                  {"factorizations", step.factorizations},
-                                  {"cg_iterations", step.linear_iterations},
-                                  {"indefinite_iterations", step.saddle_iterations},
-                                  {"shifted_iterations", step.shifted_iterations},
-                                  {"converged_at_floor", step.converged_at_floor},
-                                  {"negative_eigenvalues", step.negative_eigenvalues},
-                                  {"wall_s", step.wall_s}};
-          if (step.converged_at_floor)
-            entry["floor"] = step.floor;
-          if (!step.instability.empty())
-            entry["instability"] = step.instability;
+          nlohmann::json entry = to_json(step);
           entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                               fmt::format("{},{}", step.step, step.load_factor));
           if (contact)

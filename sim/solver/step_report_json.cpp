@@ -1,0 +1,34 @@
+#include "sim/solver/step_report_json.hpp"
+
+namespace ligsim::sim {
+
+nlohmann::json to_json(const StepReport& step)
+{
+  nlohmann::json json = {{"step", step.step},
+                         {"load_factor", step.load_factor},
+                         {"converged", step.converged},
+                         {"newton_iterations", step.iterations},
+                         {"substeps", step.substeps},
+                         {"cutbacks", step.cutbacks},
+                         {"cg_iterations", step.linear_iterations},
+                         {"factorizations", step.factorizations},
+                         {"projected_elements", step.projected_elements},
+                         {"indefinite_iterations", step.indefinite_iterations},
+                         {"line_search_backtracks", step.line_search_backtracks},
+                         {"saddle_iterations", step.saddle_iterations},
+                         {"shifted_iterations", step.shifted_iterations},
+                         {"relative_residual", step.relative_residual},
+                         {"converged_at_floor", step.converged_at_floor},
+                         {"negative_eigenvalues", step.negative_eigenvalues},
+                         {"strain_energy_mj", step.strain_energy_mj},
+                         {"min_j", step.min_j},
+                         {"min_j_element", step.min_j_element},
+                         {"wall_s", step.wall_s}};
+  if (step.converged_at_floor)
+    json["floor"] = step.floor;
+  if (!step.instability.empty())
+    json["instability"] = step.instability;
+  return json;
+}
+
+} // namespace ligsim::sim
