@@ -16,7 +16,6 @@
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <functional>
