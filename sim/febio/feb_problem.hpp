@@ -58,7 +58,11 @@ struct FebProblem {
   MaterialParameters material;       ///< with fibers
   double in_situ_strain = 0.0;       ///< fiber pre-strain of the reference state
   std::vector<FebRigidBody> bones;
-  /// The steps' labels (the flexion angles, deg): step k ends at time k + 1.
+  /// Steps at the bones' rest poses before the labelled ones, where the in-situ prestrain settles
+  /// alone (as ligsim's sweep settles it at the built pose): 1 when the first labelled pose is not
+  /// the rest pose (a found path's first angle), else 0.
+  int settle_steps = 0;
+  /// The steps' labels (the flexion angles, deg): step k ends at time settle_steps + k + 1.
   std::vector<double> step_labels;
   bool contact = false; ///< sliding contact with the bones marked `contact`
   FebContactSettings contact_settings;

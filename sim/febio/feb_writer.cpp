@@ -22,6 +22,12 @@ struct LoadCurve {
   std::vector<double> at_steps;
 };
 
+/// The settle steps and the labelled ones.
+std::size_t total_steps(const FebProblem& problem)
+{
+  return static_cast<std::size_t>(problem.settle_steps) + problem.step_labels.size();
+}
+
 /// Shortest text that reads back to the same double.
 std::string number(double value)
 {
@@ -49,6 +55,8 @@ void validate(const FebProblem& problem)
     fail("FEBio export: the ligament has no tets");
   if (problem.step_labels.empty())
     fail("FEBio export: no steps (no flexion angles)");
+  if (problem.settle_steps < 0)
+    fail("FEBio export: {} settle steps", problem.settle_steps);
   if (!problem.material.fiber)
     fail("FEBio export: the material has no fibers (FEBio's trans iso Mooney-Rivlin needs them)");
   if (problem.fiber_directions.rows() != tets)
@@ -113,7 +121,7 @@ void write_control(Buffer& out, const FebProblem& problem)
                  "      </qn_method>\n"
                  "    </solver>\n"
                  "  </Control>\n",
-                 problem.step_labels.size(), s.max_retries, number(s.min_step),
+                 total_steps(problem), s.max_retries, number(s.min_step),
                  number(s.displacement_tolerance), number(s.energy_tolerance),
                  number(s.residual_tolerance), s.max_reformations);
 }
@@ -324,7 +332,8 @@ void write_boundary_and_rigid(Buffer& out, const FebProblem& problem,
                      bone.name);
       continue;
     }
-    std::vector<Eigen::Matrix<double, 6, 1>> dofs;
+    std::vector<Eigen::Matrix<double, 6, 1>> dofs(static_cast<std::size_t>(problem.settle_steps),
+                                                  Eigen::Matrix<double, 6, 1>::Zero());
     for (const Eigen::Isometry3d& pose : bone.poses)
       dofs.push_back(feb_rigid_dofs(pose, bone.center_mm));
     for (int d = 0; d < 6; ++d) {
@@ -374,7 +383,7 @@ void write_contact(Buffer& out, const FebProblem& problem, std::vector<LoadCurve
                    number(problem.contact_settings.search_tol));
     if (bone.contact_start_offset_mm > 0.0) {
       if (ramp == 0) {
-        LoadCurve down{1.0, std::vector<double>(problem.step_labels.size(), 0.0)};
+        LoadCurve down{1.0, std::vector<double>(total_steps(problem), 0.0)};
         curves.push_back(down);
         ramp = static_cast<int>(curves.size()) + 1;
       }
@@ -389,7 +398,7 @@ void write_contact(Buffer& out, const FebProblem& problem, std::vector<LoadCurve
 void write_load_data(Buffer& out, const FebProblem& problem, const std::vector<LoadCurve>& curves)
 {
   const auto it = std::back_inserter(out);
-  const std::size_t steps = problem.step_labels.size();
+  const std::size_t steps = total_steps(problem);
   // Curve 1: the step ends are must points (the time stepper lands on each of them).
   fmt::format_to(it, "  <LoadData>\n"
                      "    <load_controller id=\"1\" name=\"must_points\" type=\"loadcurve\">\n"

@@ -13,13 +13,15 @@ namespace ligsim::sim {
 
 namespace {
 
-const FebioRecord& record_at(const FebioLog& log, FebLogRecord which, std::size_t step,
+/// The record of labelled step `step`, which ends at time settle + step + 1.
+const FebioRecord& record_at(const FebioLog& log, FebLogRecord which, std::size_t step, int settle,
                              double angle_deg)
 {
-  const FebioRecord* record = log.find(static_cast<int>(which), static_cast<double>(step + 1));
+  const std::size_t time = static_cast<std::size_t>(settle) + step + 1;
+  const FebioRecord* record = log.find(static_cast<int>(which), static_cast<double>(time));
   if (!record)
     fail<SolverError>("FEBio's log has no data record #{} at time {} (the step of {} deg)",
-                      static_cast<int>(which), step + 1, angle_deg);
+                      static_cast<int>(which), time, angle_deg);
   return *record;
 }
 
@@ -42,7 +44,8 @@ std::vector<FebioStep> febio_steps(const FebioLog& log, const FebProblem& proble
   for (std::size_t k = 0; k < problem.step_labels.size(); ++k) {
     FebioStep step;
     step.angle_deg = problem.step_labels[k];
-    const FebioRecord& nodes = record_at(log, FebLogRecord::ligament_nodes, k, step.angle_deg);
+    const FebioRecord& nodes =
+        record_at(log, FebLogRecord::ligament_nodes, k, problem.settle_steps, step.angle_deg);
     step.x.resize(body.dof_count());
     for (int n = 0; n < body.node_count(); ++n) {
       const std::vector<double>& xyz = row_of(nodes, n + 1, "node");
@@ -52,12 +55,14 @@ std::vector<FebioStep> febio_steps(const FebioLog& log, const FebProblem& proble
     step.strain_energy_mj = body.energy(step.x).energy;
     step.mean_fiber_stretch = measure_fibers(body, step.x).mean_fiber_stretch;
 
-    const FebioRecord& energy = record_at(log, FebLogRecord::strain_energy, k, step.angle_deg);
+    const FebioRecord& energy =
+        record_at(log, FebLogRecord::strain_energy, k, problem.settle_steps, step.angle_deg);
     for (int e = 0; e < body.element_count(); ++e)
       step.logged_energy_mj += row_of(energy, e + 1, "element")[0] * body.shape(e).V0;
 
     // Record 2: x;y;z;qx;qy;qz;qw;Fx;Fy;Fz;...
-    const FebioRecord& rigid = record_at(log, FebLogRecord::rigid_bodies, k, step.angle_deg);
+    const FebioRecord& rigid =
+        record_at(log, FebLogRecord::rigid_bodies, k, problem.settle_steps, step.angle_deg);
     const std::vector<double>& r = row_of(rigid, feb_material_id_of_bone(femur), "rigid body");
     if (r.size() < 10)
       fail<SolverError>("FEBio's log, data record #{}: {} values per rigid body, expected 13",

@@ -85,6 +85,10 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   femur.center_mm = center_mm;
   femur.attached_nodes = model.femur_nodes;
   femur.poses = femur_poses(conditions, steps);
+  // A found path starts off the built pose: FEBio settles the prestrain there first.
+  const Eigen::Isometry3d& first = femur.poses.front();
+  if ((first.matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() > 1e-12)
+    problem.settle_steps = 1;
   femur.contact = problem.contact && in_contact(settings.contact, "femur");
   FebRigidBody tibia;
   tibia.name = "tibia";
@@ -121,10 +125,14 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   std::vector<std::string>& notes = problem.notes;
   notes.push_back("Written by `ligsim export febio` from the knee model in " +
                   settings.model_dir.string() + ": the problem `ligsim flexion` solves.");
-  notes.push_back("Units: mm, N, MPa. Step k (time k) is the flexion angle number k of: " +
-                  joined(steps.angles_deg) +
-                  " deg; the femur's pose is prescribed exactly at each time (its six rigid "
-                  "degrees of freedom follow load curves 2-7), the tibia is fixed.");
+  notes.push_back(
+      std::string("Units: mm, N, MPa. ") +
+      (problem.settle_steps > 0 ? "Time 1 is the built pose, where the in-situ prestrain "
+                                  "settles; time k + 1 is the flexion angle number k of: "
+                                : "Time k is the flexion angle number k of: ") +
+      joined(steps.angles_deg) +
+      " deg; the femur's pose is prescribed exactly at each time (its six rigid degrees of freedom "
+      "follow load curves 2-7), the tibia is fixed.");
   notes.push_back(fmt::format(
       "Material: Weiss' transversely isotropic law, mu = {} MPa (c1 = mu/2), K = {} MPa with {} "
       "(pressure_model {}), fiber c3 = {} MPa, c4 = {}, c5 = {} MPa, lambda* = {}; fiber "

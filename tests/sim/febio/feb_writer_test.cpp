@@ -178,6 +178,33 @@ TEST(FebWriter, FemurPosesTurnAboutTheFlexionAxis)
   EXPECT_LT((poses[1] * bar_axis().point_mm - bar_axis().point_mm).norm(), 1e-12);
 }
 
+TEST(FebWriter, APathThatStartsOffTheBuiltPoseSettlesThereFirst)
+{
+  // Angles 30 and 60: the first pose is turned, so time 1 is the built pose (the prestrain
+  // settles alone, as ligsim's sweep does), and the angles end at times 2 and 3.
+  FlexionSettings settings = bar_settings(0.029);
+  settings.angles_deg = {30.0, 60.0};
+  const FebProblem problem = bar_problem(settings);
+  EXPECT_EQ(problem.settle_steps, 1);
+  const auto root = parsed(feb_text(problem));
+  ASSERT_NE(root, nullptr);
+  EXPECT_EQ(text_of(child(child(root, "Control"), "time_steps")), "3");
+  // The femur's turn about x (its rotation vector's x component, Ru, curve 5): 0 at times 0 and 1,
+  // then the two angles.
+  vtkXMLDataElement* curve =
+      child(child(child(root, "LoadData"), "load_controller", "id", "5"), "points");
+  ASSERT_NE(curve, nullptr);
+  ASSERT_EQ(count(curve, "pt"), 4);
+  const std::vector<double> at_one = numbers(text_of(curve->GetNestedElement(1)).c_str());
+  const std::vector<double> at_two = numbers(text_of(curve->GetNestedElement(2)).c_str());
+  const std::vector<double> at_three = numbers(text_of(curve->GetNestedElement(3)).c_str());
+  EXPECT_EQ(at_one, (std::vector<double>{1.0, 0.0}));
+  EXPECT_NEAR(std::abs(at_two[1]), M_PI / 6.0, 1e-12);
+  EXPECT_NEAR(std::abs(at_three[1]), M_PI / 3.0, 1e-12);
+  // A path from the built pose needs no such step.
+  EXPECT_EQ(bar_problem(bar_settings(0.029)).settle_steps, 0);
+}
+
 TEST(FebWriter, MaterialFollowsTheSettings)
 {
   FlexionSettings settings = bar_settings(0.0);
