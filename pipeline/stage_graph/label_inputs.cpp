@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/joined_names.hpp"
 #include "common/progress.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
@@ -66,15 +67,8 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
 std::vector<int> part_labels(const LabelPart& part, const std::vector<labelmap::LabelName>& names)
 {
   std::vector<int> labels;
-  std::size_t start = 0;
-  while (start <= part.label.size()) {
-    const std::size_t end = std::min(part.label.find('+', start), part.label.size());
-    const std::string piece = part.label.substr(start, end - start);
-    if (piece.empty())
-      fail("an empty label between '+' signs in '{}'", part.label);
+  for (const std::string& piece : joined_names(part.label, fmt::format("label '{}'", part.label)))
     labels.push_back(labelmap::resolve_label(piece, names, "label"));
-    start = end + 1;
-  }
   if (labels.size() > 1 && !part.bone)
     fail("'{}': only a bone's label joins others ('+'), to take its cartilage", part.label);
   return labels;

@@ -1,6 +1,7 @@
 #include "stages/io/surface_reader.hpp"
 
 #include "common/error.hpp"
+#include "common/joined_names.hpp"
 #include "common/vtk_files.hpp"
 #include "stages/geometry/surface_query.hpp"
 #include "stages/geometry/surface_topology.hpp"
@@ -64,15 +65,8 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& file, const std::stri
     if (mesh.find('+') == std::string::npos)
       return read_gltf(file, mesh);
     auto joined = vtkSmartPointer<vtkAppendPolyData>::New();
-    std::size_t start = 0;
-    while (start <= mesh.size()) {
-      const std::size_t end = std::min(mesh.find('+', start), mesh.size());
-      const std::string piece = mesh.substr(start, end - start);
-      if (piece.empty())
-        fail("'{}#{}': an empty mesh name between '+' signs", file.string(), mesh);
+    for (const std::string& piece : joined_names(mesh, fmt::format("'{}#{}'", file.string(), mesh)))
       joined->AddInputData(read_gltf(file, piece));
-      start = end + 1;
-    }
     joined->Update();
     return joined->GetOutput();
   }
