@@ -308,21 +308,22 @@ void run_flexion(const FlexionJobOptions& options)
                                   motion.axis.axis, names, settings.image_angles_deg, options.out);
   std::map<double, std::vector<Eigen::VectorXd>> states; // per angle, per ligament
   StageMeter sweep_meter;
-  const std::vector<sim::LigamentSweep> sweeps =
-      sim::run_knee_sweep(ligaments, motion, settings, settings.model_dir / "contact",
-                          [&](std::size_t l, const sim::HyperelasticBody& body,
-                              const sim::AngleResult& angle, const Eigen::VectorXd& x) {
-                            const auto grid = output.write_angle(l, body, angle, x);
-                            if (settings.images) {
-                              knee_pictures.keep(l, angle, grid);
-                              if (ligament_pictures)
-                                ligament_pictures->keep(angle, x, grid);
-                            }
-                            if (ligaments.size() > 1) {
-                              states[angle.angle_deg].resize(ligaments.size());
-                              states[angle.angle_deg][l] = x;
-                            }
-                          });
+  const std::vector<sim::LigamentSweep> sweeps = sim::run_knee_sweep(
+      ligaments, motion, settings, settings.model_dir / "contact",
+      [&](std::size_t l, const sim::HyperelasticBody& body, const sim::AngleResult& angle,
+          const Eigen::VectorXd& x) {
+        const auto grid = output.write_angle(l, body, angle, x);
+        if (settings.images) {
+          knee_pictures.keep(l, angle, grid);
+          if (ligament_pictures)
+            ligament_pictures->keep(angle, x, grid);
+        }
+        if (ligaments.size() > 1) {
+          states[angle.angle_deg].resize(ligaments.size());
+          states[angle.angle_deg][l] = x;
+        }
+      },
+      free ? free->equilibria : sim::EquilibriumGuesses{});
   std::vector<std::vector<sim::AngleResult>> angles;
   bool success = true;
   std::string failure;

@@ -2,10 +2,12 @@
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "sim/solver/parallel.hpp"
 
 #include <Eigen/Cholesky>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -28,21 +30,38 @@ struct Knee {
   const JointCoordinateSystem& jcs;
   const FreeKneeSettings& settings;
 
-  /// Moves every ligament to (flexion, q); all or none: on a failure the ones that moved go back.
+  /// Moves every ligament to (flexion, q), all at once; all or none: on a failure the ones
+  /// that moved go back.
   bool move(double flexion_deg, const Vector5d& q, std::string& failure)
   {
     const JointPose target = joint_pose_of(flexion_deg, q);
     std::vector<JointPose> before;
     for (const LigamentAtPose& l : ligaments)
       before.push_back(l.pose());
-    for (std::size_t i = 0; i < ligaments.size(); ++i)
-      if (!ligaments[i].move_to(target)) {
-        failure = ligaments[i].failure();
-        for (std::size_t j = 0; j < i; ++j)
-          ligaments[j].move_to(before[j]);
-        return false;
-      }
-    return true;
+    std::vector<char> moved(ligaments.size());
+    parallel_tasks(ligaments.size(),
+                   [&](std::size_t i) { moved[i] = ligaments[i].move_to(target) ? 1 : 0; });
+    const auto failed = std::find(moved.begin(), moved.end(), 0);
+    if (failed == moved.end())
+      return true;
+    failure = ligaments[static_cast<std::size_t>(failed - moved.begin())].failure();
+    parallel_tasks(ligaments.size(), [&](std::size_t i) {
+      if (moved[i])
+        ligaments[i].move_to(before[i]);
+    });
+    return false;
+  }
+
+  /// The ligaments' pose stiffness at `pose`, summed in their order.
+  Matrix5d stiffness(const FreePose& pose) const
+  {
+    std::vector<Matrix5d> each(ligaments.size());
+    parallel_tasks(ligaments.size(),
+                   [&](std::size_t i) { each[i] = ligaments[i].stiffness(pose); });
+    Matrix5d sum = Matrix5d::Zero();
+    for (const Matrix5d& k : each)
+      sum += k;
+    return sum;
   }
 
   double potential(const FreePose& pose, const Vector5d& q, ArticularState* state) const
@@ -130,9 +149,12 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
                                const FreeKneeSettings& settings)
 {
   FreeFemurResult result;
-  for (LigamentAtPose& ligament : ligaments)
-    if (!ligament.settle()) {
-      result.failure = "settling at the built pose: " + ligament.failure();
+  std::vector<char> settled(ligaments.size());
+  parallel_tasks(ligaments.size(),
+                 [&](std::size_t i) { settled[i] = ligaments[i].settle() ? 1 : 0; });
+  for (std::size_t i = 0; i < ligaments.size(); ++i)
+    if (!settled[i]) {
+      result.failure = "settling at the built pose: " + ligaments[i].failure();
       return result;
     }
   Knee knee{ligaments, articular, jcs, settings};
@@ -197,8 +219,7 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
         result.angles.push_back(at);
         return result;
       }
-      for (const LigamentAtPose& l : ligaments)
-        hessian += l.stiffness(pose);
+      hessian += knee.stiffness(pose);
       if (articular)
         hessian += at.articular.hessian;
       const Matrix5d scaled_hessian =
@@ -242,6 +263,8 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
       }
     }
     at.pose = joint_pose_of(angle, q);
+    for (const LigamentAtPose& l : ligaments)
+      at.ligament_positions.push_back(l.positions());
     at.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result.angles.push_back(at);
     progress.advance();

@@ -33,6 +33,7 @@ struct FreeAngle {
   double force_scale_n = 0.0;       ///< what the residual was judged against
   ArticularState articular;
   std::vector<Eigen::Vector3d> ligament_femur_forces_n; ///< per ligament, the femur on it
+  std::vector<Eigen::VectorXd> ligament_positions;      ///< per ligament, its equilibrium (mm)
   double wall_s = 0.0;
 };
 

@@ -83,6 +83,8 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
     if (at.converged) {
       angles.push_back(at.angle_deg);
       poses.push_back(at.pose);
+      for (std::size_t l = 0; l < ligaments.size(); ++l)
+        free.equilibria[ligaments[l].name].push_back(at.ligament_positions[l]);
     }
   if (angles.empty())
     return free;

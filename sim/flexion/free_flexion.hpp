@@ -5,6 +5,7 @@
 
 #include "sim/flexion/articular_contact.hpp"
 #include "sim/flexion/free_femur.hpp"
+#include "sim/flexion/knee_flexion.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
 
@@ -23,6 +24,9 @@ struct FreeFlexion {
   KneeMotion motion;
   /// Where the articular layers met per compartment (with articular contact).
   std::optional<ArticularContact::Seat> seat;
+  /// Each ligament's equilibrium at the angles of `motion`, by name: where its sweep along the
+  /// found path starts each angle.
+  EquilibriumGuesses equilibria;
 };
 
 /// Whether the knee flexes free by default ([motion] path = "auto"): it has both collateral and

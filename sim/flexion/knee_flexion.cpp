@@ -84,6 +84,7 @@ SweepResult quasi_static_sweep(Measuring& measuring, const FlexionSettings& sett
   const bool contact_on = contact && settings.contact.enabled.value_or(true);
   if (contact_on)
     solver.set_extra_potential(&contact->potential());
+  solver.set_step_starts(steps.starts);
   Progress progress("flexion angles", steps.angles_deg.size());
   const StaticResult result =
       solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,12 @@ struct SweepSteps {
   std::vector<double> angles_deg;
   std::vector<double> load_factors;
   std::vector<double> times_s;
+  /// Guesses of the equilibrium at each angle (empty: none), solved from first.
+  std::vector<Eigen::VectorXd> starts;
 };
+/// Each ligament's equilibrium at each angle of a sweep, by the ligament's name.
+using EquilibriumGuesses = std::map<std::string, std::vector<Eigen::VectorXd>>;
+
 /// Steps at the angles, load factor = angle / last angle.
 SweepSteps angle_steps(const std::vector<double>& angles_deg);
 /// The steps of a resolved knee motion.

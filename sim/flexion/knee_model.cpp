@@ -139,7 +139,7 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
   std::vector<LigamentModel> ligaments;
   for (const KneeLigament& entry : manifest->ligaments) {
     LigamentModel ligament{entry.name, load_knee_model(dir / entry.folder), dir / entry.folder,
-                           entry};
+                           entry, std::nullopt};
     KneeModel& model = ligament.model;
     if (!bones.count("femur"))
       fail("{}: this knee has no femur (its label map names none), and a flexion turns the "

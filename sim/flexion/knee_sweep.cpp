@@ -127,7 +127,8 @@ std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
 std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& ligaments,
                                           const KneeMotion& motion, const FlexionSettings& settings,
                                           const fs::path& contact_cache,
-                                          const KneeAngleCallback& on_angle)
+                                          const KneeAngleCallback& on_angle,
+                                          const EquilibriumGuesses& guesses)
 {
   const RigidMotion femur_motion = femur_rigid_motion(motion);
   const SweepSteps steps = motion_steps(motion);
@@ -137,6 +138,9 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
     const KneeModel& model = ligament.model;
     LigamentSweep sweep;
     sweep.name = ligament.name;
+    SweepSteps own_steps = steps;
+    if (const auto guess = guesses.find(ligament.name); guess != guesses.end())
+      own_steps.starts = guess->second;
     sweep.settings = ligament_settings(settings, ligament);
     if (ligaments.size() > 1)
       log_info(fmt::format("ligament {}: {} tets", ligament.name, model.mesh.T.rows()));
@@ -148,7 +152,7 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
       centerline.emplace(model.mesh, model.centerline);
     sweep.footprints = footprints(model, motion.axis.axis);
     PlausibilityContext plausibility{sweep.settings.ligament, sweep.footprints,
-                                     sweep.settings.in_situ_strain};
+                                     sweep.settings.in_situ_strain, std::nullopt};
     sweep.thickness = ligament_thickness(model.mesh, model.centerline);
     if (sweep.thickness) {
       plausibility.thin = thin_ligament_finding(ligament.name, *sweep.thickness);
@@ -174,7 +178,7 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
           if (on_angle)
             on_angle(l, swept, angle, x);
         },
-        &contact, &steps, centerline ? &*centerline : nullptr);
+        &contact, &own_steps, centerline ? &*centerline : nullptr);
     sweeps.push_back(std::move(sweep));
   }
   return sweeps;

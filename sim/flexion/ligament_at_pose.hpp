@@ -39,6 +39,8 @@ public:
   /// it cannot, leaving the last equilibrium and its pose.
   bool move_to(const JointPose& pose);
   const JointPose& pose() const { return m_pose; }
+  /// The nodes' positions at equilibrium at pose() (flat, mm).
+  const Eigen::VectorXd& positions() const { return m_x; }
   const std::string& failure() const { return m_failure; }
 
   /// Strain energy and contact barrier at the current equilibrium, N mm.

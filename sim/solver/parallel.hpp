@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -33,6 +34,38 @@ template <class Body> void parallel_slices(std::ptrdiff_t count, Body&& body)
   body(std::ptrdiff_t{0}, count / workers, 0);
   for (std::thread& thread : threads)
     thread.join();
+}
+
+/// Calls task(i) for every i in [0, count), each on a thread of its own, and rethrows the first
+/// exception a task threw once all have ended. For a few large independent jobs (the ligaments
+/// of a knee) whose serial parts (a sparse factorisation) leave cores idle.
+template <class Task> void parallel_tasks(std::size_t count, Task&& task)
+{
+  if (count <= 1) {
+    if (count == 1)
+      task(std::size_t{0});
+    return;
+  }
+  std::vector<std::exception_ptr> errors(count);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 1; i < count; ++i)
+    threads.emplace_back([&, i] {
+      try {
+        task(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    });
+  try {
+    task(std::size_t{0});
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (std::thread& thread : threads)
+    thread.join();
+  for (const std::exception_ptr& error : errors)
+    if (error)
+      std::rethrow_exception(error);
 }
 
 } // namespace ligsim::sim

@@ -529,7 +529,20 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
     const bool in_place = t_end - t <= 1e-14; // equilibrium at the current load factor
     const double t_start = t;
     int consecutive_cutbacks = 0;
-    for (bool first = true; first || t < t_end - 1e-14;) {
+    bool first = true;
+    const auto k = static_cast<std::size_t>(step) - 1;
+    if (!in_place && k < m_step_starts.size() && m_step_starts[k].size() == x.size()) {
+      const Eigen::VectorXd saved = x;
+      x = m_step_starts[k];
+      ++report.substeps;
+      if (advance(x, t_end, report)) {
+        t = t_end;
+        first = false;
+      } else {
+        x = saved;
+      }
+    }
+    for (; first || t < t_end - 1e-14;) {
       first = false;
       const double t_next = in_place ? t_end : substeps.next_target(t, t_end);
       const Eigen::VectorXd saved = x;

@@ -122,6 +122,11 @@ public:
   /// its Hessian blocks the Newton matrix, its step bound the line search.
   void set_extra_potential(const ExtraPotential* potential) { m_extra = potential; }
 
+  /// Guesses of the steps' equilibria (starts[k] for step k + 1; an empty one: none), such as
+  /// a free knee's search found them: a step is solved from its guess at once, and along the
+  /// path from the last state where the guess does not converge.
+  void set_step_starts(std::vector<Eigen::VectorXd> starts) { m_step_starts = std::move(starts); }
+
   const DofPartition& dofs() const { return m_dofs; }
   std::size_t linear_solver_storage() const { return m_linear.stored_values(); }
 
@@ -184,6 +189,7 @@ private:
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;
   double m_converged_t = 0.0; ///< load factor of the last converged state
+  std::vector<Eigen::VectorXd> m_step_starts;
   /// mu times the lumped rest volume per free DOF over the mean element size squared, N/mm: the
   /// unit of the shifted Newton step's diagonal
   Eigen::VectorXd m_shift_unit;

@@ -81,7 +81,7 @@ FlexionSettings epicondylar(const Eigen::Vector3d& medial, const Eigen::Vector3d
 PlausibilityContext bar_context(const FlexionSettings& settings)
 {
   return {settings.ligament, footprints(bar_knee(), {{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}),
-          settings.in_situ_strain};
+          settings.in_situ_strain, std::nullopt};
 }
 
 } // namespace
@@ -298,8 +298,8 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
                               prestretched_fibers(model, settings.in_situ_strain));
   const EmbeddedPolyline centerline(model.mesh, model.centerline);
   const auto warnings_of = [&](const FlexionAxis& axis) {
-    PlausibilityContext context{settings.ligament, footprints(model, axis),
-                                settings.in_situ_strain};
+    PlausibilityContext context{settings.ligament, footprints(model, axis), settings.in_situ_strain,
+                                std::nullopt};
     std::vector<std::string> warnings;
     const SweepResult sweep = run_flexion_sweep(
         body, knee_conditions(model, axis, 30.0), settings,

@@ -187,6 +187,45 @@ TEST(StaticSolver, ExplicitLoadFactorsReachTheSameEquilibrium)
   EXPECT_LT((a.x - b.x).lpNorm<Eigen::Infinity>(), 1e-9);
 }
 
+TEST(StaticSolver, AStepStartsFromItsGuessAndFromThePathWhereTheGuessFails)
+{
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  const BoundaryConditions conditions = test::cube_tension(mesh, {0.0, 0.0, 0.3});
+  NewtonSettings settings;
+  settings.load_steps = 3;
+  std::vector<Eigen::VectorXd> equilibria;
+  StaticSolver along(body, conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  ASSERT_TRUE(along
+                  .solve(x, [&](const StepReport&, const Eigen::VectorXd& state,
+                                const Eigen::VectorXd&) { equilibria.push_back(state); })
+                  .converged);
+
+  // Each step's own equilibrium as its guess: nothing left to iterate.
+  StaticSolver guessed(body, conditions, settings);
+  guessed.set_step_starts(equilibria);
+  Eigen::VectorXd y = body.rest_positions();
+  const StaticResult from_guesses = guessed.solve(y);
+  ASSERT_TRUE(from_guesses.converged) << from_guesses.failure;
+  for (const StepReport& step : from_guesses.steps) {
+    EXPECT_EQ(step.iterations, 0) << step.step;
+    EXPECT_EQ(step.substeps, 1) << step.step;
+  }
+  EXPECT_LT((y - x).lpNorm<Eigen::Infinity>(), 1e-12);
+
+  // A guess with an inverted element cannot be solved from: the step goes on from the last
+  // state, to the same equilibrium.
+  std::vector<Eigen::VectorXd> bad = {Eigen::VectorXd(), -equilibria[1], Eigen::VectorXd()};
+  StaticSolver recovering(body, conditions, settings);
+  recovering.set_step_starts(bad);
+  Eigen::VectorXd z = body.rest_positions();
+  const StaticResult recovered = recovering.solve(z);
+  ASSERT_TRUE(recovered.converged) << recovered.failure;
+  EXPECT_GT(recovered.steps[1].iterations, 0);
+  EXPECT_LT((z - x).lpNorm<Eigen::Infinity>(), 1e-8);
+}
+
 TEST(StaticSolver, LoadFactorsMustIncreaseWithinZeroAndOne)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
