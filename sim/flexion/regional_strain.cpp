@@ -60,9 +60,32 @@ double RegionalMean::max_mean(const Eigen::VectorXd& per_element) const
 {
   if (per_element.size() != m_volumes.size())
     fail("regional strain: {} values for {} elements", per_element.size(), m_volumes.size());
+  // Cell by cell: the 27 cells around one are looked up once for all its elements, and their
+  // elements summed in mean()'s order (the same figures, several times faster).
+  const double r2 = m_radius_mm * m_radius_mm;
   double best = -INFINITY;
-  for (Eigen::Index e = 0; e < per_element.size(); ++e)
-    best = std::max(best, mean(per_element, e));
+  std::vector<int> candidates;
+  for (const auto& [key, elements] : m_cells) {
+    const Eigen::Vector3d inside = m_centroids.row(elements.front()).transpose();
+    candidates.clear();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+          if (const auto found = m_cells.find(cell_key(inside, m_radius_mm, dx, dy, dz));
+              found != m_cells.end())
+            candidates.insert(candidates.end(), found->second.begin(), found->second.end());
+    for (int e : elements) {
+      const Eigen::Vector3d c = m_centroids.row(e).transpose();
+      double sum = 0.0;
+      double volume = 0.0;
+      for (int other : candidates)
+        if ((m_centroids.row(other).transpose() - c).squaredNorm() <= r2) {
+          sum += m_volumes[other] * per_element[other];
+          volume += m_volumes[other];
+        }
+      best = std::max(best, volume > 0.0 ? sum / volume : per_element[e]);
+    }
+  }
   return best;
 }
 
