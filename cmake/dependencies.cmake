@@ -12,6 +12,8 @@ find_package(VTK REQUIRED COMPONENTS
   IOCore IOGeometry IOLegacy IOPLY IOXML IOImage ImagingGeneral
   # Pictures (sim/flexion/render): off-screen OpenGL through X, text, charts.
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
+  # The live window (pipeline/view): the angle slider.
+  InteractionWidgets
   ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2)
 # Xlib, to check that an X display answers before rendering on it.
 find_package(X11 REQUIRED)

@@ -32,6 +32,7 @@ int main(int argc, char** argv)
   ligsim::cli::add_verify_command(app);
   ligsim::cli::add_tear_command(app);
   ligsim::cli::add_flexion_command(app);
+  ligsim::cli::add_view_command(app);
   ligsim::cli::add_export_command(app);
   ligsim::cli::add_study_command(app);
   ligsim::cli::add_guide_footers(app);

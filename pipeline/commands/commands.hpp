@@ -27,6 +27,8 @@ void add_tear_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 /// `flexion`: the knee flexion sweep on a built model.
 void add_flexion_command(CLI::App& app);
+/// `view`: a built knee moved by hand in a live window.
+void add_view_command(CLI::App& app);
 /// `study`: convergence ladders, segmentation sensitivity, cohort tables.
 void add_study_command(CLI::App& app);
 

@@ -22,6 +22,7 @@ std::map<std::string, std::string> guide_pages()
       {"verify", "docs/simulate.md"},  {"verify febio", "docs/export.md"},
       {"tear", "docs/tear.md"},        {"flexion", "docs/flexion.md"},
       {"export", "docs/export.md"},    {"study", "docs/studies.md"},
+      {"view", "docs/view.md"},
   };
   for (const pipeline::Stage& stage : pipeline::build_stages())
     pages[stage.name] = "docs/build.md";

@@ -168,17 +168,11 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
   first.wall_s = seconds_since(settle_start);
   record(first, x);
 
-  DynamicsSettings dynamics;
-  dynamics.time_step_s =
-      last > 0.0 ? last / (interactive.angular_speed_deg_s * frames) : interactive.time_step_s;
+  DynamicsSettings dynamics =
+      interactive_dynamics(settings, last > 0.0 ? last / (interactive.angular_speed_deg_s * frames)
+                                                : interactive.time_step_s);
   dynamics.frames = frames;
   dynamics.ramp_frames = frames;
-  dynamics.density_kg_m3 = interactive.density_kg_m3;
-  dynamics.mass_damping_per_s = interactive.mass_damping_per_s;
-  dynamics.linear_solver = interactive.linear_solver;
-  dynamics.max_iterations = interactive.max_iterations;
-  dynamics.iteration_tolerance = interactive.iteration_tolerance;
-  dynamics.pcg = settings.newton.pcg;
   ImplicitEuler solver(body, conditions, dynamics);
   const bool contact_on = contact && settings.contact.enabled.value_or(true);
   if (contact_on)
@@ -220,6 +214,20 @@ SweepResult interactive_sweep(Measuring& measuring, const FlexionSettings& setti
 }
 
 } // namespace
+
+DynamicsSettings interactive_dynamics(const FlexionSettings& settings, double time_step_s)
+{
+  const InteractiveSettings& interactive = settings.interactive;
+  DynamicsSettings dynamics;
+  dynamics.time_step_s = time_step_s;
+  dynamics.density_kg_m3 = interactive.density_kg_m3;
+  dynamics.mass_damping_per_s = interactive.mass_damping_per_s;
+  dynamics.linear_solver = interactive.linear_solver;
+  dynamics.max_iterations = interactive.max_iterations;
+  dynamics.iteration_tolerance = interactive.iteration_tolerance;
+  dynamics.pcg = settings.newton.pcg;
+  return dynamics;
+}
 
 FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd& x,
                              double failure_strain, const RegionalMean* regions)
@@ -279,7 +287,7 @@ SweepSteps angle_steps(const std::vector<double>& angles_deg)
 
 SweepSteps motion_steps(const KneeMotion& motion)
 {
-  return {motion.angles_deg, motion.load_factors, motion.times_s};
+  return {motion.angles_deg, motion.load_factors, motion.times_s, {}};
 }
 
 BoundaryConditions knee_conditions(const KneeModel& model, const FlexionAxis& axis,

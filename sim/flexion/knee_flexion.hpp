@@ -14,6 +14,7 @@
 #include "sim/flexion/regional_strain.hpp"
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
+#include "sim/solver/implicit_euler.hpp"
 
 #include <Eigen/Core>
 
@@ -50,6 +51,9 @@ using EquilibriumGuesses = std::map<std::string, std::vector<Eigen::VectorXd>>;
 SweepSteps angle_steps(const std::vector<double>& angles_deg);
 /// The steps of a resolved knee motion.
 SweepSteps motion_steps(const KneeMotion& motion);
+
+/// The implicit Euler settings of the interactive mode ([interactive]) at `time_step_s`.
+DynamicsSettings interactive_dynamics(const FlexionSettings& settings, double time_step_s);
 
 /// Fiber stretch |F a| (with the in-situ pre-stretch) and volume change over the elements.
 struct FiberMeasures {

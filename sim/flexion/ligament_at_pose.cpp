@@ -165,11 +165,51 @@ Matrix5d LigamentAtPose::stiffness(const FreePose& pose) const
   return 0.5 * (K + K.transpose());
 }
 
-Eigen::Vector3d LigamentAtPose::femur_force() const
+bool LigamentAtPose::frame_to(const JointPose& pose, double time_step_s, FrameReport& report)
+{
+  if (!m_dynamics) {
+    m_dynamics = std::make_unique<ImplicitEuler>(*m_body, m_conditions,
+                                                 interactive_dynamics(m_settings, time_step_s));
+    if (m_contact_on)
+      m_dynamics->set_extra_potential(&m_contact->potential());
+    m_dynamics->start(m_x);
+    m_velocity = Eigen::VectorXd::Zero(m_x.size());
+  }
+  m_segment->set(m_pose, pose);
+  report.load_factor = 1.0;
+  Eigen::VectorXd residual;
+  if (!m_dynamics->frame(m_x, m_velocity, 0.0, report, residual)) {
+    m_segment->set(m_pose, m_pose);
+    m_failure = fmt::format("{}: frame {}", m_name, m_dynamics->failure());
+    return false;
+  }
+  m_pose = pose;
+  m_segment->set(pose, pose);
+  m_residual = residual;
+  return true;
+}
+
+void LigamentAtPose::set_contact(bool on)
+{
+  m_contact_on = on;
+  const ExtraPotential* potential = on ? &m_contact->potential() : nullptr;
+  if (m_solver)
+    m_solver->set_extra_potential(potential);
+  if (m_dynamics)
+    m_dynamics->set_extra_potential(potential);
+}
+
+Eigen::Vector3d LigamentAtPose::footprint_force() const
 {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   for (int n : m_conditions.constraints[kFemurSet].nodes)
     force += m_residual.segment<3>(3 * n);
+  return force;
+}
+
+Eigen::Vector3d LigamentAtPose::femur_force() const
+{
+  Eigen::Vector3d force = footprint_force();
   if (m_contact_on && m_femur_obstacle >= 0)
     for (const ContactPotential::NodeTerm& term :
          m_contact->potential().node_terms(static_cast<std::size_t>(m_femur_obstacle), m_x, 1.0))

@@ -16,6 +16,7 @@
 #include "sim/kinematics/free_pose.hpp"
 #include "sim/kinematics/pose_segment.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
+#include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
 
 #include <filesystem>
@@ -51,6 +52,18 @@ public:
   Matrix5d stiffness(const FreePose& pose) const;
   /// What the femur exerts on the ligament: its footprint's reaction and its contact, N.
   Eigen::Vector3d femur_force() const;
+  /// The femoral footprint's reaction alone (flexion.csv's femur_force_n), N.
+  Eigen::Vector3d footprint_force() const;
+
+  /// One implicit Euler frame of a live view ([interactive] settings, `time_step_s` long): the
+  /// femur goes from pose() to `pose` within the frame and the tissue follows with its inertia,
+  /// its velocity carried from frame to frame. False when the frame fails (failure() says why),
+  /// leaving the last state.
+  bool frame_to(const JointPose& pose, double time_step_s, FrameReport& report);
+  /// Contact with the bones on or off from now on.
+  void set_contact(bool on);
+  bool contact() const { return m_contact_on; }
+  const HyperelasticBody& body() const { return *m_body; }
 
 private:
   void make_solver();
@@ -65,6 +78,8 @@ private:
   bool m_contact_on = true;
   std::optional<HyperelasticBody> m_body;
   std::unique_ptr<StaticSolver> m_solver;
+  std::unique_ptr<ImplicitEuler> m_dynamics; ///< the live frames' (made by the first)
+  Eigen::VectorXd m_velocity;
   Eigen::VectorXd m_x, m_residual;
   JointPose m_pose;
   /// The nodes' first-order response to the five coordinates at m_response_pose (stiffness()

@@ -234,9 +234,71 @@ double ImplicitEuler::support_force(const Eigen::VectorXd& x) const
   return std::sqrt(reaction2);
 }
 
+void ImplicitEuler::start(const Eigen::VectorXd& x)
+{
+  m_support_force = support_force(x);
+}
+
+bool ImplicitEuler::frame(Eigen::VectorXd& x, Eigen::VectorXd& v, double t_before,
+                          FrameReport& report, Eigen::VectorXd& residual)
+{
+  const auto frame_start = std::chrono::steady_clock::now();
+  const double h = m_settings.time_step_s;
+  // The frame in 2^k equal sub-steps; k grows when a sub-step fails.
+  const Eigen::VectorXd x_saved = x;
+  const Eigen::VectorXd v_saved = v;
+  bool done = false;
+  for (int halvings = 0; halvings <= m_settings.max_halvings && !done; ++halvings) {
+    const int substeps = 1 << halvings;
+    x = x_saved;
+    v = v_saved;
+    done = true;
+    report.equation_met = true;
+    for (int s = 1; s <= substeps && done; ++s) {
+      const double t = t_before + (report.load_factor - t_before) * s / substeps;
+      done = step(x, v, h / substeps, t, report);
+      report.equation_met = report.equation_met && m_step_met;
+    }
+    report.substeps = substeps;
+  }
+  if (!done) {
+    x = x_saved;
+    v = v_saved;
+    m_failure = fmt::format("failed after {} halvings of the time step: {}",
+                            m_settings.max_halvings, m_failure);
+    return false;
+  }
+
+  report.strain_energy_mj = m_end_energy;
+  residual = m_end_gradient;
+  residual -= report.load_factor * m_external;
+  if (m_extra)
+    m_extra->energy(x, report.load_factor, &residual);
+  double residual2 = 0.0;
+  double reaction2 = 0.0;
+  double inertia2 = 0.0;
+  for (int dof = 0; dof < m_dofs.dof_count(); ++dof) {
+    if (m_dofs.is_free(dof)) {
+      residual2 += residual(dof) * residual(dof);
+      inertia2 += std::pow(m_mass(dof) * v(dof) / h, 2);
+    } else {
+      reaction2 += residual(dof) * residual(dof);
+    }
+  }
+  m_support_force = std::sqrt(reaction2);
+  const double scale =
+      std::max({(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+  report.relative_residual = std::sqrt(residual2) / scale;
+  report.relative_inertia = std::sqrt(inertia2) / scale;
+  report.kinetic_energy_mj = 0.5 * v.dot(m_mass.cwiseProduct(v));
+  std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
+  report.wall_s = seconds_since(frame_start);
+  return true;
+}
+
 DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_frame)
 {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start_time = std::chrono::steady_clock::now();
   DynamicResult result;
   if (x.size() != m_dofs.dof_count() || !x.allFinite()) {
     result.failure = "the initial positions are missing or not finite";
@@ -244,71 +306,28 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
   }
   Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
   const double h = m_settings.time_step_s;
-  m_support_force = support_force(x);
-  for (int frame = 1; frame <= m_settings.frames; ++frame) {
-    const auto frame_start = std::chrono::steady_clock::now();
+  start(x);
+  Eigen::VectorXd residual;
+  for (int frame_number = 1; frame_number <= m_settings.frames; ++frame_number) {
     FrameReport report;
-    report.frame = frame;
-    report.time_s = frame * h;
-    const double t_before = std::min(1.0, static_cast<double>(frame - 1) / m_settings.ramp_frames);
-    report.load_factor = std::min(1.0, static_cast<double>(frame) / m_settings.ramp_frames);
-
-    // The frame in 2^k equal sub-steps; k grows when a sub-step fails.
-    const Eigen::VectorXd x_saved = x;
-    const Eigen::VectorXd v_saved = v;
-    bool done = false;
-    for (int halvings = 0; halvings <= m_settings.max_halvings && !done; ++halvings) {
-      const int substeps = 1 << halvings;
-      x = x_saved;
-      v = v_saved;
-      done = true;
-      report.equation_met = true;
-      for (int s = 1; s <= substeps && done; ++s) {
-        const double t = t_before + (report.load_factor - t_before) * s / substeps;
-        done = step(x, v, h / substeps, t, report);
-        report.equation_met = report.equation_met && m_step_met;
-      }
-      report.substeps = substeps;
-    }
+    report.frame = frame_number;
+    report.time_s = frame_number * h;
+    const double t_before =
+        std::min(1.0, static_cast<double>(frame_number - 1) / m_settings.ramp_frames);
+    report.load_factor = std::min(1.0, static_cast<double>(frame_number) / m_settings.ramp_frames);
+    const bool done = frame(x, v, t_before, report, residual);
     result.substeps += report.substeps;
     result.linear_iterations += report.linear_iterations;
     result.factorizations += report.factorizations;
     result.projected_elements += report.projected_elements;
     if (!done) {
-      x = x_saved;
-      result.failure = fmt::format("frame {} failed after {} halvings of the time step: {}", frame,
-                                   m_settings.max_halvings, m_failure);
-      result.wall_s = seconds_since(start);
+      result.failure = fmt::format("frame {} {}", frame_number, m_failure);
+      result.wall_s = seconds_since(start_time);
       return result;
     }
-
-    report.strain_energy_mj = m_end_energy;
-    Eigen::VectorXd gradient = m_end_gradient;
-    gradient -= report.load_factor * m_external;
-    if (m_extra)
-      m_extra->energy(x, report.load_factor, &gradient);
-    double residual2 = 0.0;
-    double reaction2 = 0.0;
-    double inertia2 = 0.0;
-    for (int dof = 0; dof < m_dofs.dof_count(); ++dof) {
-      if (m_dofs.is_free(dof)) {
-        residual2 += gradient(dof) * gradient(dof);
-        inertia2 += std::pow(m_mass(dof) * v(dof) / h, 2);
-      } else {
-        reaction2 += gradient(dof) * gradient(dof);
-      }
-    }
-    m_support_force = std::sqrt(reaction2);
-    const double scale =
-        std::max({(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
-    report.relative_residual = std::sqrt(residual2) / scale;
-    report.relative_inertia = std::sqrt(inertia2) / scale;
-    report.kinetic_energy_mj = 0.5 * v.dot(m_mass.cwiseProduct(v));
-    std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
-    report.wall_s = seconds_since(frame_start);
-    result.frames = frame;
+    result.frames = frame_number;
     if (on_frame)
-      on_frame(report, x, gradient);
+      on_frame(report, x, residual);
     const bool at_rest = report.load_factor >= 1.0 &&
                          report.relative_residual <= m_settings.convergence_tolerance &&
                          report.relative_inertia <= m_settings.convergence_tolerance;
@@ -321,7 +340,7 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
   if (!result.completed)
     result.failure = fmt::format("not at rest after {} frames (relative residual above {:.3g})",
                                  result.frames, m_settings.convergence_tolerance);
-  result.wall_s = seconds_since(start);
+  result.wall_s = seconds_since(start_time);
   return result;
 }
 

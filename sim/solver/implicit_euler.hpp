@@ -89,6 +89,15 @@ public:
   /// Runs from positions `x` at rest (zero velocity). Never throws on divergence.
   DynamicResult run(Eigen::VectorXd& x, const FrameCallback& on_frame = {});
 
+  /// Frame by frame, where the load is moved as the frames go (a live view): start() at the
+  /// first state, then frame() to report.load_factor from `t_before` with velocity `v`; fills
+  /// the report and the residual dE/dx - f_ext. False, with (x, v) as they were and failure()
+  /// saying why, when max_halvings could not make the frame.
+  void start(const Eigen::VectorXd& x);
+  bool frame(Eigen::VectorXd& x, Eigen::VectorXd& v, double t_before, FrameReport& report,
+             Eigen::VectorXd& residual);
+  const std::string& failure() const { return m_failure; }
+
   /// Adds `potential` (not owned; null: none) to the energy: its gradient and Hessian blocks enter
   /// each frame's solve, and the frame's move is shortened (velocity with it) so that no node
   /// crosses a contact surface.

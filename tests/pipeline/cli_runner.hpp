@@ -35,6 +35,18 @@ inline CliResult run_ligsim(const std::string& arguments)
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
 }
 
+/// run_ligsim with DISPLAY unset: what a user on a machine without a screen sees.
+inline CliResult run_ligsim_without_display(const std::string& arguments)
+{
+  const char* display = std::getenv("DISPLAY");
+  const std::string saved = display ? display : "";
+  ::unsetenv("DISPLAY");
+  CliResult result = run_ligsim(arguments);
+  if (display)
+    ::setenv("DISPLAY", saved.c_str(), 1);
+  return result;
+}
+
 /// This test process's scratch root, removed with everything in it when the process ends (a suite
 /// run leaves about 500 MB of model folders otherwise); LIGSIM_KEEP_TEST_FILES=1 keeps it to look
 /// at. The process id keeps suites of several checkouts run at once apart.

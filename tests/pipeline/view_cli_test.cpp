@@ -1,0 +1,108 @@
+/// `ligsim view` end to end under a virtual X server: a scripted drag of the slider on the real
+/// MCL, every frame drawn and recorded, the last one at the quasi-static sweep's force; and the
+/// clear error without a display.
+
+#include "tests/pipeline/cli_runner.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace ligsim::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Runs ligsim under `xvfb-run` (a screen of its own), as the docs tell a user without one.
+CliResult run_on_virtual_screen(const std::string& arguments)
+{
+  const fs::path log = fresh_folder("view_log") += ".txt";
+  const std::string command = "xvfb-run -a -s '-screen 0 1280x1024x24' " +
+                              std::string(LIGSIM_BINARY) + " " + arguments + " 2> " + log.string() +
+                              " > /dev/null";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+std::vector<std::string> csv_cells(const std::string& line)
+{
+  std::vector<std::string> cells;
+  std::string cell;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted) {
+      cells.push_back(cell);
+      cell.clear();
+    } else
+      cell += c;
+  }
+  cells.push_back(cell);
+  return cells;
+}
+
+} // namespace
+
+TEST(ViewCli, WithoutADisplayItSaysSoAndGivesTheXvfbLine)
+{
+  const CliResult result = run_ligsim_without_display("view --model nowhere");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.stderr_text.find("DISPLAY is not set"), std::string::npos) << result.stderr_text;
+  EXPECT_NE(result.stderr_text.find("xvfb-run -a"), std::string::npos) << result.stderr_text;
+}
+
+TEST(ViewCli, AScriptedDragTo90DegreesDrawsEveryFrameAndEndsAtTheQuasiStaticForce)
+{
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const fs::path model = fresh_folder("view_mcl_model");
+  const std::string config = source_path("data/vhf-right-knee/flexion.toml").string();
+  const CliResult built =
+      run_ligsim("build --config " + source_path("data/vhf-right-knee/mcl.toml").string() +
+                 " --out " + model.string());
+  ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
+  const fs::path sweep = fresh_folder("view_mcl_sweep");
+  const CliResult swept = run_ligsim("flexion --config " + config + " --model " + model.string() +
+                                     " --angles 0,90 --no-images --out " + sweep.string());
+  ASSERT_EQ(swept.exit_code, 0) << swept.stderr_text;
+  const double quasi_static =
+      read_json(sweep / "summary.json")["results"]["angles"][1]["femur_force_magnitude_n"];
+
+  // The slider dragged from 0 to 90 degrees in 2 s (the femur's own speed limit, 45 deg/s),
+  // then held for 1 s while the tissue settles: 300 frames of 10 ms.
+  const fs::path script = fresh_folder("view_script") += ".csv";
+  std::ofstream(script) << "time_s,angle_deg\n0,0\n2,90\n3,90\n";
+  const fs::path record = fresh_folder("view_record");
+  const CliResult viewed = run_on_virtual_screen("view --config " + config + " --model " +
+                                                 model.string() + " --script " + script.string() +
+                                                 " --record " + record.string() + " --size 320");
+  ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
+
+  const std::vector<std::string> rows = lines(record / "frames.csv");
+  ASSERT_EQ(rows.size(), 301u);
+  const std::vector<std::string> header = csv_cells(rows[0]);
+  ASSERT_EQ(header[4], "MCL_femur_force_n");
+  ASSERT_EQ(header[5], "MCL_regional_peak_pct");
+  ASSERT_EQ(header.back(), "overlay");
+  for (std::size_t f = 1; f < rows.size(); ++f) {
+    const std::vector<std::string> cells = csv_cells(rows[f]);
+    ASSERT_EQ(cells.size(), header.size()) << rows[f];
+    // Every frame drawn, and the overlay shows the frame's own figures.
+    EXPECT_TRUE(fs::exists(record / fmt::format("frame_{:05d}.png", f))) << f;
+    EXPECT_NE(cells.back().find(fmt::format("MCL {} N, {} % over 2 mm", cells[4], cells[5])),
+              std::string::npos)
+        << rows[f];
+  }
+  const std::vector<std::string> last = csv_cells(rows.back());
+  EXPECT_DOUBLE_EQ(std::stod(last[2]), 90.0);
+  EXPECT_NEAR(std::stod(last[4]), quasi_static, 0.05 * quasi_static) << rows.back();
+}
