@@ -79,7 +79,7 @@ void check_files(const CLI::App& command, const std::string& path,
     }
   }
   if (const std::string file = given(command, "scene"); !file.empty()) {
-    if (path == "tear")
+    if (path == "tear" || path == "view") // view's scene is a tearing scene
       membrane::load_scene(file);
     else
       sim::load_scene(file);

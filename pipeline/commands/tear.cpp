@@ -8,6 +8,7 @@
 #include "common/vtk_files.hpp"
 #include "sim/membrane/output/membrane_frame.hpp"
 #include "sim/membrane/output/render_frame.hpp"
+#include "sim/membrane/output/tear_path.hpp"
 #include "sim/membrane/scene/scene.hpp"
 #include "sim/membrane/scene/tear_metrics.hpp"
 #include "sim/membrane/scene/tear_simulation.hpp"
@@ -160,6 +161,7 @@ void run_tear(const TearOptions& options)
   }
   progress.finish();
   write_pvd(options.out / "frames.pvd", frames);
+  write_text_atomically(options.out / "tear_path.csv", tear_path_csv(simulation.metrics()));
 
   nlohmann::json& stage = summary.add_stage("simulate", run_meter, {{"frames", frames.size()}});
   stage["output_wall_s"] = output_s;

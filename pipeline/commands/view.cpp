@@ -4,11 +4,14 @@
 #include "common/progress.hpp"
 #include "pipeline/commands/flexion_options.hpp"
 #include "pipeline/view/live_window.hpp"
+#include "pipeline/view/membrane_window.hpp"
 #include "pipeline/view/view_script.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_motion.hpp"
 #include "sim/flexion/knee_sweep.hpp"
 #include "sim/flexion/live_knee.hpp"
+#include "sim/membrane/scene/scene.hpp"
+#include "sim/membrane/scene/tear_simulation.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -21,6 +24,7 @@ namespace ligsim::cli {
 namespace {
 
 struct ViewOptions {
+  std::filesystem::path scene; ///< a tearing scene, instead of a model
   FlexionOptions flexion;
   std::filesystem::path script;
   std::filesystem::path record;
@@ -28,9 +32,28 @@ struct ViewOptions {
   int width = 1024;
 };
 
+/// A tearing scene torn live by its own pull.
+void view_membrane(const ViewOptions& options)
+{
+  if (!options.script.empty() || !options.flexion.model.empty())
+    fail("view: a tearing scene plays its own pull; --script and --model are for a knee model");
+  membrane::TearSimulation simulation(membrane::load_scene(options.scene));
+  MembraneWindowOptions window;
+  window.record = options.record;
+  window.width = options.width;
+  window.interactive = options.record.empty();
+  play_membrane(simulation, window);
+}
+
 void run_view(const ViewOptions& options)
 {
   require_display();
+  if (!options.scene.empty()) {
+    view_membrane(options);
+    return;
+  }
+  if (options.flexion.model.empty())
+    fail("view: give a built model (--model DIR) or a tearing scene (a .toml file)");
   sim::FlexionSettings settings = flexion_settings_from(options.flexion, "view");
   const double max_angle =
       options.max_angle_deg > 0.0 ? options.max_angle_deg : settings.angles_deg.back();
@@ -89,6 +112,11 @@ void add_view_command(CLI::App& app)
   auto* command = app.add_subcommand(
       "view", "move a built knee by hand in a live window: the femur follows a slider, the "
               "ligaments answer frame by frame");
+  command
+      ->add_option("scene", options->scene,
+                   "a tearing scene (.toml, data/scenes/square-sheet-45.toml) to tear live, "
+                   "instead of a model")
+      ->check(CLI::ExistingFile);
   add_flexion_options(*command, options->flexion, true);
   command
       ->add_option("--script", options->script,

@@ -1,4 +1,5 @@
 #include "pipeline/view/live_window.hpp"
+#include "pipeline/view/view_style.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
@@ -14,11 +15,9 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
-#include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkLookupTable.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
-#include <vtkObjectFactory.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -241,25 +240,6 @@ struct LiveWindow::Scene {
     write_text_atomically(options.record / "frames.csv", header + csv);
   }
 };
-
-namespace {
-
-/// The trackball camera, with the view's keys instead of VTK's own letters.
-class ViewStyle : public vtkInteractorStyleTrackballCamera {
-public:
-  static ViewStyle* New();
-  vtkTypeMacro(ViewStyle,
-               vtkInteractorStyleTrackballCamera) std::function<void(const std::string&)> on_key;
-  void OnKeyPress() override
-  {
-    if (on_key)
-      on_key(Interactor->GetKeySym() ? Interactor->GetKeySym() : "");
-  }
-  void OnChar() override {} // VTK's letters (wireframe, stereo, quit) are not the view's
-};
-vtkStandardNewMacro(ViewStyle);
-
-} // namespace
 
 LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
                        const Eigen::Vector3d& view_axis, LiveWindowOptions options)

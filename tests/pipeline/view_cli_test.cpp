@@ -106,3 +106,27 @@ TEST(ViewCli, AScriptedDragTo90DegreesDrawsEveryFrameAndEndsAtTheQuasiStaticForc
   EXPECT_DOUBLE_EQ(std::stod(last[2]), 90.0);
   EXPECT_NEAR(std::stod(last[4]), quasi_static, 0.05 * quasi_static) << rows.back();
 }
+
+TEST(ViewCli, TheSquareSheetTearsLiveAlongTheSamePathAsTheBatchTear)
+{
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const std::string scene = source_path("data/scenes/square-sheet-45.toml").string();
+  const fs::path batch = fresh_folder("view_tear_batch");
+  const CliResult torn = run_ligsim("tear " + scene + " --no-png --out " + batch.string());
+  ASSERT_EQ(torn.exit_code, 0) << torn.stderr_text;
+  const fs::path live = fresh_folder("view_tear_live");
+  const CliResult viewed =
+      run_on_virtual_screen("view " + scene + " --record " + live.string() + " --size 320");
+  ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
+
+  // The same elements split in the same order: every event's step, tip and segment alike.
+  const std::vector<std::string> path = lines(batch / "tear_path.csv");
+  ASSERT_GT(path.size(), 10u);
+  EXPECT_EQ(lines(live / "tear_path.csv"), path);
+  // A frame every `frame_every` (10) steps and the last: all drawn and recorded.
+  const int steps = read_json(batch / "summary.json")["results"]["steps"];
+  const int frames = (steps + 9) / 10;
+  EXPECT_TRUE(fs::exists(live / fmt::format("frame_{:05d}.png", frames)));
+  EXPECT_FALSE(fs::exists(live / fmt::format("frame_{:05d}.png", frames + 1)));
+}
