@@ -36,7 +36,9 @@
 #include <chrono>
 #include <cstdlib>
 #include <deque>
+#include <future>
 #include <map>
+#include <optional>
 
 namespace ligsim::cli {
 
@@ -139,6 +141,7 @@ struct LiveWindow::Scene {
   double target_deg = 0.0;
   Rate drawn;
   std::deque<double> compute_s; ///< the last frames' computing times
+  double computing_s = 0.0;     ///< all frames' computing time
   std::string csv;
   int recorded = 0;
   int screenshots = 0;
@@ -205,20 +208,32 @@ struct LiveWindow::Scene {
     csv += row + ",\"" + flat + "\"\n";
   }
 
-  /// Computes one frame towards the target and draws it (recording it when asked).
-  void frame()
+  /// The simulation's part of a frame: one frame towards `target`.
+  void compute(double target)
   {
-    knee.advance(target_deg);
+    knee.advance(target);
+    computing_s += knee.last().wall_s;
     compute_s.push_back(knee.last().wall_s);
     if (compute_s.size() > 30)
       compute_s.pop_front();
+  }
+
+  /// Draws the frame computed last (recording it when asked) while the next one, towards
+  /// `next_target`, is computed on another thread: drawing and simulation overlap.
+  void frame(std::optional<double> next_target)
+  {
     update_actors();
     drawn.tick(now_s());
     update_text();
+    std::future<void> next;
+    if (next_target)
+      next = std::async(std::launch::async, [this, target = *next_target] { compute(target); });
     if (!options.record.empty())
       sim::write_window_png(window, options.record / fmt::format("frame_{:05d}.png", ++recorded));
     else
       window->Render();
+    if (next.valid())
+      next.get();
   }
 
   void screenshot()
@@ -335,12 +350,11 @@ int LiveWindow::run_script(const ViewScript& script)
       std::max(1, static_cast<int>(std::ceil(script.end_s() / s.knee.time_step_s() - 1e-9)));
   Progress progress("view frames", static_cast<std::size_t>(frames));
   const double start = now_s();
-  double computing = 0.0;
+  const auto target = [&](int f) { return script.angle_at(f * s.knee.time_step_s()); };
+  s.compute(target(1));
   for (int f = 1; f <= frames; ++f) {
-    s.target_deg = script.angle_at(f * s.knee.time_step_s());
-    s.slider_look->SetValue(s.target_deg);
-    s.frame();
-    computing += s.knee.last().wall_s;
+    s.slider_look->SetValue(s.knee.last().target_deg);
+    s.frame(f < frames ? std::optional<double>(target(f + 1)) : std::nullopt);
     progress.advance();
   }
   progress.finish();
@@ -348,7 +362,7 @@ int LiveWindow::run_script(const ViewScript& script)
   log_info(fmt::format("view: {} frames in {:.2f} s: {:.1f} frames/s drawn{}, {:.1f} computed "
                        "(the simulation alone)",
                        frames, wall, frames / wall, s.options.record.empty() ? "" : " and recorded",
-                       frames / computing));
+                       frames / s.computing_s));
   s.write_csv();
   return frames;
 }
@@ -393,7 +407,9 @@ void LiveWindow::run_interactive()
   tick->SetCallback([](vtkObject* caller, unsigned long, void* data, void*) {
     auto* scene = static_cast<Scene*>(data);
     try {
-      scene->frame();
+      if (scene->knee.last().frame == 0)
+        scene->compute(scene->target_deg);
+      scene->frame(scene->target_deg);
     } catch (const std::exception& e) {
       scene->error = e.what();
       static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
