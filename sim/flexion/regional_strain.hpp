@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -27,12 +28,26 @@ public:
   double max_mean(const Eigen::VectorXd& per_element) const;
 
 private:
+  /// Calls visit(e, candidates) for every element with the elements of the 27 cells about its
+  /// own; stops when visit returns false.
+  template <class Visit> void for_each_region(Visit&& visit) const;
+  void list_regions() const;
+
   double m_radius_mm;
   Eigen::MatrixX3d m_centroids;
   Eigen::VectorXd m_volumes;
-  /// The elements in each grid cell of edge radius_mm (a region lies within 27 cells): found
-  /// anew at each call, since a region list per element would take hundreds of entries each.
+  /// The elements in each grid cell of edge radius_mm (a region lies within 27 cells).
   std::unordered_map<std::int64_t, std::vector<int>> m_cells;
+  /// Each element's region, listed at the first max_mean() where the lists stay under
+  /// kMaxListed entries (a live view asks every frame); a fine mesh's regions hold thousands of
+  /// elements each, and are found anew at each call instead.
+  struct Regions {
+    std::vector<int> start; ///< element e's region is members[start[e] .. start[e + 1])
+    std::vector<int> members;
+    Eigen::VectorXd volume; ///< each region's volume
+  };
+  mutable std::optional<Regions> m_regions;
+  mutable bool m_too_many = false;
 };
 
 } // namespace ligsim::sim
