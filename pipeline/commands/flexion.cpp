@@ -239,22 +239,14 @@ void run_flexion(const FlexionJobOptions& options)
   // The ligaments share the bones and the anatomy: the motion comes from any of them.
   const sim::KneeModel& bones = ligaments.front().model;
   // A knee tested with a ligament cut still finds its own path: the default follows the knee.
-  if (settings.motion.path == sim::MotionSettings::Path::automatic &&
-      sim::flexes_free_by_default(whole)) {
-    settings.motion.path = sim::MotionSettings::Path::free;
-    log_info("flexion: the knee has both collaterals and both cruciates: the femur is free in its "
-             "five other coordinates ([motion] path = \"free\")");
-  }
+  const bool free_path = sim::choose_free_path(settings, whole);
   sim::KneeMotion motion = sim::resolve_knee_motion(bones, settings);
   // The knee finds its own path first; the sweep then follows it as any path.
   std::optional<sim::FreeFlexion> free;
-  if (settings.motion.path == sim::MotionSettings::Path::free) {
+  if (free_path) {
     StageMeter free_meter;
-    // The path is the whole knee's (but the ligaments cut), whichever of them are swept.
-    sim::FlexionSettings knee_settings = settings;
-    knee_settings.ligaments.clear();
-    const std::vector<sim::LigamentModel> tested = sim::chosen_ligaments(whole, knee_settings);
-    free = sim::find_free_flexion(tested, motion, settings, settings.model_dir / "contact");
+    free = sim::find_free_flexion(sim::free_path_ligaments(whole, settings), motion, settings,
+                                  settings.model_dir / "contact");
     summary.add_stage("free_path", free_meter, {{"success", free->found.success}});
     if (!free->found.success && free->motion.angles_deg == motion.angles_deg)
       fail<SolverError>("flexion with the femur free: {}", free->found.failure);

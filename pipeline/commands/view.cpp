@@ -60,12 +60,10 @@ void run_view(const ViewOptions& options)
   const std::vector<sim::LigamentModel> whole =
       sim::load_knee(settings.model_dir, settings.ligament.name);
   const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
-  if (settings.motion.path == sim::MotionSettings::Path::automatic &&
-      sim::flexes_free_by_default(whole))
-    settings.motion.path = sim::MotionSettings::Path::free;
+  const bool free_path = sim::choose_free_path(settings, whole);
   settings.angles_deg = {0.0, max_angle};
   sim::KneeMotion motion = sim::resolve_knee_motion(ligaments.front().model, settings);
-  if (settings.motion.path == sim::MotionSettings::Path::free) {
+  if (free_path) {
     // The knee's own path, found first every 10 degrees; the view then moves along it.
     std::vector<double> angles;
     for (double angle = 0.0; angle < max_angle; angle += 10.0)
@@ -75,10 +73,8 @@ void run_view(const ViewOptions& options)
     log_info(fmt::format("view: finding the knee's own path at {} angles first (the femur free "
                          "in five coordinates)",
                          angles.size()));
-    sim::FlexionSettings knee_settings = settings;
-    knee_settings.ligaments.clear();
     const sim::FreeFlexion free =
-        sim::find_free_flexion(sim::chosen_ligaments(whole, knee_settings), motion, settings,
+        sim::find_free_flexion(sim::free_path_ligaments(whole, settings), motion, settings,
                                settings.model_dir / "contact");
     if (!free.found.success)
       fail<SolverError>("view: the knee's own path: {}", free.found.failure);

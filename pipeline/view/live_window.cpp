@@ -58,20 +58,25 @@ std::vector<std::pair<std::array<int, 3>, int>> boundary_faces(const TetMesh& me
 {
   static constexpr std::array<std::array<int, 3>, 4> kFaces = {
       {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
-  std::map<std::array<int, 3>, std::pair<std::array<int, 3>, int>> seen;
-  std::map<std::array<int, 3>, int> count;
+  // Per face (sorted corners): its corners as its tet orders them, its tet, how many tets.
+  struct Seen {
+    std::array<int, 3> face;
+    int element;
+    int count;
+  };
+  std::map<std::array<int, 3>, Seen> seen;
   for (Eigen::Index e = 0; e < mesh.T.rows(); ++e)
     for (const std::array<int, 3>& f : kFaces) {
       const std::array<int, 3> face = {mesh.T(e, f[0]), mesh.T(e, f[1]), mesh.T(e, f[2])};
       std::array<int, 3> key = face;
       std::sort(key.begin(), key.end());
-      if (++count[key] == 1)
-        seen[key] = {face, static_cast<int>(e)};
+      auto [entry, added] = seen.try_emplace(key, Seen{face, static_cast<int>(e), 0});
+      ++entry->second.count;
     }
   std::vector<std::pair<std::array<int, 3>, int>> faces;
-  for (const auto& [key, n] : count)
-    if (n == 1)
-      faces.push_back(seen[key]);
+  for (const auto& [key, face] : seen)
+    if (face.count == 1)
+      faces.push_back({face.face, face.element});
   return faces;
 }
 

@@ -49,6 +49,24 @@ bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments)
   return names.count("MCL") && names.count("LCL") && names.count("ACL") && names.count("PCL");
 }
 
+bool choose_free_path(FlexionSettings& settings, const std::vector<LigamentModel>& whole)
+{
+  if (settings.motion.path == MotionSettings::Path::automatic && flexes_free_by_default(whole)) {
+    settings.motion.path = MotionSettings::Path::free;
+    log_info("flexion: the knee has both collaterals and both cruciates: the femur is free in its "
+             "five other coordinates ([motion] path = \"free\")");
+  }
+  return settings.motion.path == MotionSettings::Path::free;
+}
+
+std::vector<LigamentModel> free_path_ligaments(const std::vector<LigamentModel>& whole,
+                                               const FlexionSettings& settings)
+{
+  FlexionSettings knee_settings = settings;
+  knee_settings.ligaments.clear();
+  return chosen_ligaments(whole, knee_settings);
+}
+
 FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const KneeMotion& motion,
                               const FlexionSettings& settings, const fs::path& contact_cache)
 {

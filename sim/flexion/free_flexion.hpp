@@ -33,6 +33,15 @@ struct FreeFlexion {
 /// both cruciate ligaments (by name) and its femur and tibia.
 bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments);
 
+/// Makes `[motion] path = "auto"` free when `whole` (the knee's every ligament) flexes free by
+/// default, saying so on stderr; true when the path is free.
+bool choose_free_path(FlexionSettings& settings, const std::vector<LigamentModel>& whole);
+
+/// The ligaments that hold the femur on its free path: the whole knee's but those cut
+/// (`--without`), whichever of them are swept.
+std::vector<LigamentModel> free_path_ligaments(const std::vector<LigamentModel>& whole,
+                                               const FlexionSettings& settings);
+
 /// Finds the free path of `ligaments` (with `settings`' loads and articular contact, the bones'
 /// grids in `contact_cache`) at `motion`'s angles in its joint coordinate system.
 FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const KneeMotion& motion,
