@@ -4,6 +4,7 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/vtk_files.hpp"
 #include "sim/flexion/render/picture_parts.hpp"
 #include "sim/flexion/render/window_png.hpp"
 
@@ -30,6 +31,8 @@
 #include <vtkSliderWidget.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkTransform.h>
+#include <vtkTransformPolyDataFilter.h>
 
 #include <algorithm>
 #include <array>
@@ -137,6 +140,10 @@ struct LiveWindow::Scene {
   vtkNew<vtkRenderWindow> window;
   vtkSmartPointer<vtkRenderer> renderer;
   vtkSmartPointer<vtkActor> femur;
+  /// The bones as drawn (femur, tibia, fibula if any) and the ligaments' names, for the
+  /// recorded series.
+  std::vector<vtkSmartPointer<vtkPolyData>> bones_shown;
+  std::vector<std::string> names;
   std::vector<vtkSmartPointer<vtkPolyData>> surfaces;
   std::vector<std::vector<int>> face_elements;
   vtkNew<vtkLookupTable> colours;
@@ -148,6 +155,7 @@ struct LiveWindow::Scene {
   std::deque<double> compute_s; ///< the last frames' computing times
   double computing_s = 0.0;     ///< all frames' computing time
   std::string csv;
+  std::vector<PvdDataSet> series; ///< the recorded frames' files, for frames.pvd
   int recorded = 0;
   int screenshots = 0;
   std::string error;
@@ -230,15 +238,49 @@ struct LiveWindow::Scene {
     update_actors();
     drawn.tick(now_s());
     update_text();
+    const double time_s = knee.last().time_s; // before the next frame's computing changes it
     std::future<void> next;
     if (next_target)
       next = std::async(std::launch::async, [this, target = *next_target] { compute(target); });
-    if (!options.record.empty())
+    if (!options.record.empty()) {
       sim::write_window_png(window, options.record / fmt::format("frame_{:05d}.png", ++recorded));
-    else
+      record_series(time_s);
+    } else {
       window->Render();
+    }
     if (next.valid())
       next.get();
+  }
+
+  /// The frame just drawn (at simulated `time`) as VTK files in `record`/series: each ligament's surface with its
+  /// fiber strain and the femur in its pose (the tibia and fibula once), for frames.pvd.
+  void record_series(double time)
+  {
+    const fs::path folder = options.record / "series";
+    if (recorded == 1)
+      ensure_directory(folder);
+    for (std::size_t l = 0; l < surfaces.size(); ++l) {
+      const std::string file = fmt::format("series/{}_{:05d}.vtp", names[l], recorded);
+      write_vtk(surfaces[l], options.record / file);
+      series.push_back({time, static_cast<int>(l), file});
+    }
+    vtkNew<vtkTransform> pose;
+    pose->SetMatrix(femur->GetUserMatrix());
+    vtkNew<vtkTransformPolyDataFilter> moved;
+    moved->SetInputData(bones_shown[0]);
+    moved->SetTransform(pose);
+    moved->Update();
+    const std::string femur_file = fmt::format("series/femur_{:05d}.vtp", recorded);
+    write_vtk(moved->GetOutput(), options.record / femur_file);
+    const int parts = static_cast<int>(surfaces.size());
+    series.push_back({time, parts, femur_file});
+    static constexpr std::array<const char*, 2> kFixed = {"tibia", "fibula"};
+    for (std::size_t b = 1; b < bones_shown.size(); ++b) {
+      const std::string file = fmt::format("series/{}.vtp", kFixed[b - 1]);
+      if (recorded == 1)
+        write_vtk(bones_shown[b], options.record / file);
+      series.push_back({time, parts + static_cast<int>(b), file});
+    }
   }
 
   void screenshot()
@@ -258,6 +300,8 @@ struct LiveWindow::Scene {
       header += fmt::format(",{0}_femur_force_n,{0}_regional_peak_pct", l.name);
     header += ",solves,drawn_fps,simulated_fps,frame_wall_s,overlay\n";
     write_text_atomically(options.record / "frames.csv", header + csv);
+    if (!series.empty())
+      write_pvd(options.record / "frames.pvd", series);
   }
 };
 
@@ -273,10 +317,13 @@ LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
   s.window->SetWindowName("ligsim view");
   s.renderer = sim::add_white_renderer(s.window);
   s.renderer->UseFXAAOff(); // a full-screen pass per frame: a tenth of a frame on llvmpipe
-  s.femur = sim::add_bone(s.renderer, for_display(bones.femur), 1.0);
-  sim::add_bone(s.renderer, for_display(bones.tibia), 1.0);
+  s.bones_shown.push_back(for_display(bones.femur));
+  s.bones_shown.push_back(for_display(bones.tibia));
   if (bones.fibula)
-    sim::add_bone(s.renderer, for_display(bones.fibula), 1.0);
+    s.bones_shown.push_back(for_display(bones.fibula));
+  s.femur = sim::add_bone(s.renderer, s.bones_shown[0], 1.0);
+  for (std::size_t b = 1; b < s.bones_shown.size(); ++b)
+    sim::add_bone(s.renderer, s.bones_shown[b], 1.0);
   s.colours->SetRange(0.0, s.options.strain_range_pct);
   s.colours->SetHueRange(0.667, 0.0);
   s.colours->Build();
@@ -307,6 +354,7 @@ LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
     actor->SetMapper(mapper);
     s.renderer->AddActor(actor);
     s.surfaces.push_back(surface);
+    s.names.push_back(knee.ligament(l).name());
     s.face_elements.push_back(std::move(elements));
     low = low.cwiseMin(mesh.V.colwise().minCoeff().transpose());
     high = high.cwiseMax(mesh.V.colwise().maxCoeff().transpose());

@@ -17,7 +17,8 @@
 namespace ligsim::cli {
 
 struct LiveWindowOptions {
-  std::filesystem::path record; ///< a folder for frame_NNNNN.png and frames.csv; empty: none
+  /// A folder for frame_NNNNN.png, frames.csv and frames.pvd (with its series/); empty: none.
+  std::filesystem::path record;
   int width = 1024;
   int height = 768;
   double strain_range_pct = 10.0; ///< the colour bar's top

@@ -102,6 +102,24 @@ TEST(ViewCli, AScriptedDragTo90DegreesDrawsEveryFrameAndEndsAtTheQuasiStaticForc
               std::string::npos)
         << rows[f];
   }
+  // frames.pvd: per frame the ligament and the femur, at the frame's time, the tibia once.
+  std::vector<std::string> ligament_entries;
+  for (const std::string& line : lines(record / "frames.pvd"))
+    if (line.find("part=\"0\"") != std::string::npos)
+      ligament_entries.push_back(line);
+  ASSERT_EQ(ligament_entries.size(), 300u);
+  for (std::size_t f = 1; f < rows.size(); f += 50) {
+    const std::string file = fmt::format("series/MCL_{:05d}.vtp", f);
+    EXPECT_NE(ligament_entries[f - 1].find(fmt::format("timestep=\"{:g}\"",
+                                                       std::stod(csv_cells(rows[f])[1]))),
+              std::string::npos)
+        << ligament_entries[f - 1];
+    EXPECT_NE(ligament_entries[f - 1].find(file), std::string::npos) << ligament_entries[f - 1];
+    EXPECT_TRUE(fs::exists(record / file)) << file;
+    EXPECT_TRUE(fs::exists(record / fmt::format("series/femur_{:05d}.vtp", f))) << f;
+  }
+  EXPECT_TRUE(fs::exists(record / "series/tibia.vtp"));
+
   const std::vector<std::string> last = csv_cells(rows.back());
   EXPECT_DOUBLE_EQ(std::stod(last[2]), 90.0);
   EXPECT_NEAR(std::stod(last[4]), quasi_static, 0.05 * quasi_static) << rows.back();
