@@ -119,8 +119,9 @@ void add_view_command(CLI::App& app)
                    "play an interaction: a CSV with columns time_s,angle_deg (the slider "
                    "over simulated time); every frame is drawn")
       ->check(CLI::ExistingFile);
-  command->add_option("--record", options->record,
-                      "write every drawn frame as frame_NNNNN.png, a frames.csv and a frames.pvd here");
+  command->add_option(
+      "--record", options->record,
+      "write every drawn frame as frame_NNNNN.png, a frames.csv and a frames.pvd here");
   command->add_option("--max-angle", options->max_angle_deg,
                       "the slider's largest angle, deg (default: the config's last angle)");
   command->add_option("--size", options->width, "the window's width, pixels (height 3/4 of it)")

@@ -252,8 +252,9 @@ struct LiveWindow::Scene {
       next.get();
   }
 
-  /// The frame just drawn (at simulated `time`) as VTK files in `record`/series: each ligament's surface with its
-  /// fiber strain and the femur in its pose (the tibia and fibula once), for frames.pvd.
+  /// The frame just drawn (at simulated `time`) as VTK files in `record`/series: each ligament's
+  /// surface with its fiber strain and the femur in its pose (the tibia and fibula once), for
+  /// frames.pvd.
   void record_series(double time)
   {
     const fs::path folder = options.record / "series";

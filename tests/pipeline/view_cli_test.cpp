@@ -110,8 +110,8 @@ TEST(ViewCli, AScriptedDragTo90DegreesDrawsEveryFrameAndEndsAtTheQuasiStaticForc
   ASSERT_EQ(ligament_entries.size(), 300u);
   for (std::size_t f = 1; f < rows.size(); f += 50) {
     const std::string file = fmt::format("series/MCL_{:05d}.vtp", f);
-    EXPECT_NE(ligament_entries[f - 1].find(fmt::format("timestep=\"{:g}\"",
-                                                       std::stod(csv_cells(rows[f])[1]))),
+    EXPECT_NE(ligament_entries[f - 1].find(
+                  fmt::format("timestep=\"{:g}\"", std::stod(csv_cells(rows[f])[1]))),
               std::string::npos)
         << ligament_entries[f - 1];
     EXPECT_NE(ligament_entries[f - 1].find(file), std::string::npos) << ligament_entries[f - 1];
