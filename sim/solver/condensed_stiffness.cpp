@@ -54,6 +54,7 @@ CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
   std::vector<NodeBlock> blocks;
   StiffnessSolver solver(body, dofs, LinearSolverKind::direct, PcgSettings{});
   for (const bool project : {false, true}) {
+    blocks.clear();
     if (extra != nullptr)
       extra->hessian_blocks(x, t, project, blocks);
     solver.prepare(x, project, 1.0, Eigen::VectorXd(), blocks);

@@ -25,9 +25,9 @@ public:
   /// it is not null (a vector of the full DOF length).
   virtual double energy(const Eigen::VectorXd& x, double t, Eigen::VectorXd* gradient) const = 0;
 
-  /// Hessian blocks at (x, t): each projected to positive semi-definite (`projected`), or the
-  /// exact ones (which may be indefinite; where the whole matrix stays definite with them,
-  /// Newton converges quadratically).
+  /// Appends the Hessian blocks at (x, t) to `blocks`: each projected to positive semi-definite
+  /// (`projected`), or the exact ones (which may be indefinite; where the whole matrix stays
+  /// definite with them, Newton converges quadratically).
   virtual void hessian_blocks(const Eigen::VectorXd& x, double t, bool projected,
                               std::vector<NodeBlock>& blocks) const = 0;
 

@@ -117,6 +117,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     Eigen::VectorXd dv;
     for (bool prepared = true;; prepared = false) {
       if (!prepared) {
+        blocks.clear(); // the exact blocks out, their projections in
         if (m_extra)
           m_extra->hessian_blocks(x, t, true, blocks);
         report.projected_elements +=
@@ -139,6 +140,13 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
       report.factorizations += solve.factorizations;
       if (solve.ok && dv.allFinite())
         break;
+      // Newton's later solves carry the contact's exact blocks: indefinite with them, a shorter
+      // sub-step (A's mass part grows against h^2 K) is cheaper than Newton with projected
+      // blocks, which converges only linearly on sliding nodes; the last halving projects.
+      if (solve.indefinite && iteration > 0 && !m_last_halving) {
+        m_failure = "the system matrix is indefinite";
+        return false;
+      }
       if (solve.indefinite && !project && m_settings.projection == PsdProjection::automatic) {
         project = true;
         continue;
@@ -250,6 +258,7 @@ bool ImplicitEuler::frame(Eigen::VectorXd& x, Eigen::VectorXd& v, double t_befor
   bool done = false;
   for (int halvings = 0; halvings <= m_settings.max_halvings && !done; ++halvings) {
     const int substeps = 1 << halvings;
+    m_last_halving = halvings == m_settings.max_halvings;
     x = x_saved;
     v = v_saved;
     done = true;

@@ -133,6 +133,7 @@ private:
   /// frame: the scale of converged()'s tolerance, N.
   double m_support_force = 0.0;
   bool m_step_met = true; ///< the last step's equation held to iteration_tolerance
+  bool m_last_halving = false; ///< the frame's sub-steps cannot be halved again
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;
 };

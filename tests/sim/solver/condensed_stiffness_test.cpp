@@ -7,6 +7,7 @@
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/condensed_stiffness.hpp"
 #include "sim/solver/static_solver.hpp"
+#include "tests/sim/solver/indefinite_until_projected.hpp"
 
 #include <gtest/gtest.h>
 
@@ -100,4 +101,31 @@ TEST(CondensedStiffness, ItIsTheDerivativeOfTheReactionsOnceTheBodyReequilibrate
   EXPECT_NEAR(S.matrix(0, 1), S.matrix(1, 0), 1e-9 * S.matrix.norm());
   EXPECT_GT(S.matrix(0, 0), 0.0);
   EXPECT_GT(S.matrix(1, 1), 0.0);
+}
+
+TEST(CondensedStiffness, AnExtraPotentialIndefiniteUnprojectedCountsByItsProjectionAlone)
+{
+  // The isotropic matrix alone: at rest its element stiffnesses are positive semi-definite, so
+  // projecting them changes nothing but round-off.
+  FiberField fiber(1, 3);
+  fiber << 0.3, 0.0, 1.0;
+  const HyperelasticBody body(structured_box_mesh({3, 3, 3}, {1.0, 1.0, 1.0}), MaterialParameters{},
+                              fiber);
+  const TopMoved c = cube_with_top(body.mesh(), Eigen::Vector3d::Zero());
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(body.dof_count(), 1);
+  for (int n : c.top)
+    D(3 * n + 2, 0) = 1.0;
+  int inner = -1;
+  for (Eigen::Index n = 0; n < body.mesh().V.rows(); ++n)
+    if ((body.mesh().V.row(n) - Eigen::RowVector3d(1.0, 1.0, 1.0) / 3.0).norm() < 1e-9)
+      inner = static_cast<int>(n);
+  ASSERT_GE(inner, 0);
+  // The extra potential's exact block makes K_ff indefinite; its projection (zero) leaves the
+  // body's own condensed stiffness.
+  const Eigen::VectorXd rest = body.rest_positions();
+  const CondensedStiffness plain = condensed_stiffness(body, c.conditions, rest, nullptr, 1.0, D);
+  const ligsim::sim::test::IndefiniteUntilProjected extra(inner, 1e6);
+  const CondensedStiffness with = condensed_stiffness(body, c.conditions, rest, &extra, 1.0, D);
+  EXPECT_EQ(with.factor, "projected");
+  EXPECT_NEAR(with.matrix(0, 0), plain.matrix(0, 0), 1e-9 * std::abs(plain.matrix(0, 0)));
 }

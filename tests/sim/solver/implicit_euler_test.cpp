@@ -3,6 +3,7 @@
 #include "sim/solver/implicit_euler.hpp"
 #include "sim/solver/static_solver.hpp"
 #include "tests/sim/solver/cube_tension.hpp"
+#include "tests/sim/solver/indefinite_until_projected.hpp"
 
 #include <gtest/gtest.h>
 
@@ -133,4 +134,49 @@ TEST(ImplicitEuler, AFrameWhoseSolvesRanOutBeforeItsEquationHeldIsFlagged)
   EXPECT_EQ(frames_met(8, 0.03), 10);
   // Two solves cannot bring the residual of a 20 % stretch to 1e-13 of the supports' force.
   EXPECT_EQ(frames_met(2, 1e-13), 0);
+}
+
+TEST(ImplicitEuler, ASolveIndefiniteWithTheExactExtraBlocksIsRetriedWithTheirProjectionsAlone)
+{
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  // An inner node, whose "exact" extra block makes every matrix after the first indefinite.
+  int inner = -1;
+  for (Eigen::Index n = 0; n < cube.mesh.V.rows(); ++n)
+    if ((cube.mesh.V.row(n) - Eigen::RowVector3d(1.0, 1.0, 1.0) / 3.0).norm() < 1e-9)
+      inner = static_cast<int>(n);
+  ASSERT_GE(inner, 0);
+  const test::IndefiniteUntilProjected extra(inner, 1e6);
+  const auto run = [&](const ExtraPotential* potential, int max_halvings) {
+    DynamicsSettings settings;
+    settings.time_step_s = 1e-2;
+    settings.frames = 2;
+    settings.ramp_frames = 2;
+    settings.linear_solver = LinearSolverKind::direct;
+    settings.max_iterations = 12;
+    settings.iteration_tolerance = 1e-10;
+    settings.max_halvings = max_halvings;
+    ImplicitEuler solver(body, cube.conditions, settings);
+    solver.set_extra_potential(potential);
+    Eigen::VectorXd x = body.rest_positions();
+    int substeps = 0;
+    const DynamicResult result = solver.run(
+        x, [&](const FrameReport& frame, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+          substeps = std::max(substeps, frame.substeps);
+        });
+    EXPECT_TRUE(result.completed) << result.failure;
+    return std::make_pair(x, substeps);
+  };
+  const auto [plain, plain_substeps] = run(nullptr, 0);
+  // With no halving left, the frame's later solves take the projected blocks (zero) alone.
+  const auto [projected, unhalved] = run(&extra, 0);
+  EXPECT_EQ(unhalved, 1);
+  // With halvings left, the sub-step is halved first; the same state either way (the potential
+  // has no energy), to the frames' tolerance.
+  const auto [halved, substeps] = run(&extra, 3);
+  EXPECT_GT(substeps, 1);
+  const double moved = (plain - body.rest_positions()).lpNorm<Eigen::Infinity>();
+  EXPECT_GT(moved, 1e-3);
+  EXPECT_LT((projected - plain).lpNorm<Eigen::Infinity>(), 1e-6 * moved);
+  EXPECT_LT((halved - plain).lpNorm<Eigen::Infinity>(), 1e-6 * moved);
 }
