@@ -32,16 +32,18 @@ struct ViewOptions {
   int width = 1024;
 };
 
-/// A tearing scene torn live by its own pull.
+/// A tearing scene torn live by its own pull and the hand's.
 void view_membrane(const ViewOptions& options)
 {
-  if (!options.script.empty() || !options.flexion.model.empty())
-    fail("view: a tearing scene plays its own pull; --script and --model are for a knee model");
+  if (!options.flexion.model.empty())
+    fail("view: --model is for a knee model, not a tearing scene");
   membrane::TearSimulation simulation(membrane::load_scene(options.scene));
   MembraneWindowOptions window;
   window.record = options.record;
   window.width = options.width;
-  window.interactive = options.record.empty();
+  window.interactive = options.record.empty() && options.script.empty();
+  if (!options.script.empty())
+    window.hand = ViewScript::read(options.script, {"x_mm", "y_mm"});
   play_membrane(simulation, window);
 }
 
@@ -116,8 +118,9 @@ void add_view_command(CLI::App& app)
   add_flexion_options(*command, options->flexion, true);
   command
       ->add_option("--script", options->script,
-                   "play an interaction: a CSV with columns time_s,angle_deg (the slider "
-                   "over simulated time); every frame is drawn")
+                   "play an interaction: a CSV with columns time_s,angle_deg (a knee's slider "
+                   "over simulated time) or time_s,x_mm,y_mm (a hand pulling a tearing scene's "
+                   "sheet); every frame is drawn")
       ->check(CLI::ExistingFile);
   command->add_option(
       "--record", options->record,

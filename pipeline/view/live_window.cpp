@@ -404,7 +404,7 @@ int LiveWindow::run_script(const ViewScript& script)
       std::max(1, static_cast<int>(std::ceil(script.end_s() / s.knee.time_step_s() - 1e-9)));
   Progress progress("view frames", static_cast<std::size_t>(frames));
   const double start = now_s();
-  const auto target = [&](int f) { return script.angle_at(f * s.knee.time_step_s()); };
+  const auto target = [&](int f) { return script.at(f * s.knee.time_step_s()); };
   s.compute(target(1));
   for (int f = 1; f <= frames; ++f) {
     s.slider_look->SetValue(s.knee.last().target_deg);

@@ -31,6 +31,7 @@ namespace ligsim::cli {
 namespace {
 
 using membrane::TearSimulation;
+using membrane::Vec2;
 
 struct Player {
   TearSimulation& simulation;
@@ -43,6 +44,7 @@ struct Player {
   int drawn = 0;
   int screenshots = 0;
   bool paused = false;
+  bool hand_done = false; ///< the scripted hand has let go
   double stepping_s = 0.0;
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
@@ -91,16 +93,54 @@ struct Player {
         simulation.tearing().element_criterion(simulation.mesh(), simulation.elements())));
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto& hand = simulation.hand();
+    const std::string held =
+        hand ? fmt::format("\nhand at ({:.2f}, {:.2f}) mm, {} nodes", hand->position().x(),
+                           hand->position().y(), hand->nodes().size())
+             : "";
     overlay->SetInput(
-        fmt::format("{}: {:.3f} s, step {}\n{} tearing events, {} elements, load {:.3g} N\n{:.2f} "
-                    "ms per step | {:.0f} frames/s drawn{}",
+        fmt::format("{}: {:.3f} s, step {}\n{} tearing events, {} elements, load {:.3g} N{}\n"
+                    "{:.2f} ms per step | {:.0f} frames/s drawn{}",
                     simulation.scene().name, simulation.time_s(), metrics.steps,
                     metrics.events.size(), simulation.mesh().triangle_count(),
-                    simulation.current_load_n(),
+                    simulation.current_load_n(), held,
                     metrics.steps > 0 ? 1000.0 * stepping_s / metrics.steps : 0.0,
                     wall > 0.0 ? drawn / wall : 0.0,
                     simulation.finished() ? " | finished" : (paused ? " | paused" : ""))
             .c_str());
+  }
+
+  /// The scripted hand for the step about to be taken: it takes the sheet at the script's start,
+  /// follows it, and lets go after its end.
+  void follow_script()
+  {
+    if (!options.hand || hand_done)
+      return;
+    const ViewScript& script = *options.hand;
+    const double t = simulation.time_s() + simulation.scene().solver.time_step_s;
+    if (t < script.start_s())
+      return;
+    const Vec2 at(script.at(t, 0), script.at(t, 1));
+    if (t > script.end_s()) {
+      simulation.release();
+      hand_done = true;
+    } else if (!simulation.hand()) {
+      if (!simulation.grab(at, kHandRadiusMm, kHandPickMm, kHandSpeedMmPerS))
+        fail("view: the script's hand at ({}, {}) mm at {} s is not on the sheet (no free node "
+             "within {} mm)",
+             at.x(), at.y(), t, kHandPickMm);
+    } else {
+      simulation.move_hand(at);
+    }
+  }
+
+  /// The sheet's point under the display position (x, y): the view looks along -z at z = 0.
+  Vec2 point_at(int x, int y)
+  {
+    renderer->SetDisplayPoint(x, y, 0.0);
+    renderer->DisplayToWorld();
+    const double* world = renderer->GetWorldPoint();
+    return Vec2(world[0] / world[3], world[1] / world[3]);
   }
 
   /// `frame_every` steps (fewer at the end), then a drawn (and recorded) frame.
@@ -109,8 +149,10 @@ struct Player {
     if (paused || simulation.finished())
       return;
     const auto begin = std::chrono::steady_clock::now();
-    for (int s = 0; s < simulation.scene().run.frame_every && !simulation.finished(); ++s)
+    for (int s = 0; s < simulation.scene().run.frame_every && !simulation.finished(); ++s) {
+      follow_script();
       simulation.step();
+    }
     stepping_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     ++drawn;
     show();
@@ -153,6 +195,11 @@ int play_membrane(TearSimulation& simulation, const MembraneWindowOptions& optio
       } else if (key == "q" || key == "Escape")
         interactor->TerminateApp();
     };
+    style->on_press = [&](int x, int y) {
+      return simulation.grab(player.point_at(x, y), kHandRadiusMm, kHandPickMm, kHandSpeedMmPerS);
+    };
+    style->on_drag = [&](int x, int y) { simulation.move_hand(player.point_at(x, y)); };
+    style->on_release = [&] { simulation.release(); };
     interactor->SetInteractorStyle(style);
     vtkNew<vtkCallbackCommand> tick;
     tick->SetClientData(&player);

@@ -184,3 +184,30 @@ TEST(ViewCli, TheSquareSheetTearsLiveAlongTheSamePathAsTheBatchTear)
   EXPECT_TRUE(fs::exists(live / fmt::format("frame_{:05d}.png", frames)));
   EXPECT_FALSE(fs::exists(live / fmt::format("frame_{:05d}.png", frames + 1)));
 }
+
+TEST(ViewCli, AScriptedHandPullsTheSheetHeldAtItsOtherSideAndItTears)
+{
+  if (!has_xvfb())
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  // The 45-degree square sheet held at its left side, its right side's middle pulled 4 mm
+  // outward by the script.
+  const std::string scene = source_path("data/scenes/square-sheet-held.toml").string();
+  const fs::path dir = fresh_folder("view_hand");
+  const CliResult viewed =
+      run_on_virtual_screen("view " + scene + " --script " +
+                            source_path("data/scenes/square-sheet-held-hand.csv").string() +
+                            " --record " + (dir / "record").string() + " --size 320");
+  ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
+  const std::vector<std::string> path = lines(dir / "record" / "tear_path.csv");
+  ASSERT_GT(path.size(), 10u) << "the sheet did not tear";
+  EXPECT_TRUE(fs::exists(dir / "record" / "frame_00001.png"));
+
+  // A hand that takes the sheet where it is not: a clear error.
+  fs::create_directories(dir);
+  std::ofstream(dir / "off.csv") << "time_s,x_mm,y_mm\n0,20,0\n0.2,25,0\n";
+  const CliResult off =
+      run_on_virtual_screen("view " + scene + " --script " + (dir / "off.csv").string() +
+                            " --record " + (dir / "off").string());
+  EXPECT_NE(off.exit_code, 0);
+  EXPECT_NE(off.stderr_text.find("is not on the sheet"), std::string::npos) << off.stderr_text;
+}

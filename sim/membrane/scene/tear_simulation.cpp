@@ -201,6 +201,8 @@ void TearSimulation::step()
 {
   const auto start = std::chrono::steady_clock::now();
   m_time_s += m_scene.solver.time_step_s;
+  if (m_hand)
+    m_hand->apply(m_mesh, m_scene.solver.time_step_s);
   const SolveReport solve = m_solver.step(m_mesh, m_elements, external_forces());
   const std::vector<TearEvent> events =
       m_tearing.step(m_mesh, m_elements, areal_density(m_scene.material));
@@ -227,6 +229,27 @@ void TearSimulation::step()
     m_metrics.min_angle_rad = std::min(m_metrics.min_angle_rad, min_rest_angle(m_mesh));
     m_metrics.separated = component_count(m_mesh) > 1;
   }
+}
+
+bool TearSimulation::grab(const Vec2& at_mm, double radius_mm, double pick_mm,
+                          double speed_mm_per_s)
+{
+  release();
+  m_hand = Hand::grab(m_mesh, at_mm, radius_mm, pick_mm, speed_mm_per_s);
+  return m_hand.has_value();
+}
+
+void TearSimulation::move_hand(const Vec2& target_mm)
+{
+  if (m_hand)
+    m_hand->move_to(target_mm);
+}
+
+void TearSimulation::release()
+{
+  if (m_hand)
+    m_hand->release(m_mesh);
+  m_hand.reset();
 }
 
 bool TearSimulation::finished() const

@@ -6,6 +6,7 @@
 #include "sim/membrane/mesh/membrane_mesh.hpp"
 #include "sim/membrane/model/corotational_elements.hpp"
 #include "sim/membrane/model/implicit_euler.hpp"
+#include "sim/membrane/scene/hand.hpp"
 #include "sim/membrane/scene/scene.hpp"
 
 #include <optional>
@@ -47,6 +48,17 @@ public:
   /// True once the run's stop condition or its step limit is reached.
   bool finished() const;
 
+  /// A hand takes the membrane at `at_mm` (the free node nearest it, within `pick_mm`): the free
+  /// nodes within `radius_mm` of that node at rest follow the hand at most at `speed_mm_per_s`
+  /// from the next step on. False (and no hand) when no free node is that near; a hand already
+  /// holding lets go first.
+  bool grab(const Vec2& at_mm, double radius_mm, double pick_mm, double speed_mm_per_s);
+  /// Where the hand goes (nothing without a hand).
+  void move_hand(const Vec2& target_mm);
+  /// The hand lets go: its nodes are free again.
+  void release();
+  const std::optional<Hand>& hand() const { return m_hand; }
+
   /// The load now: the grasp's force, else the total force on the first traction's sides, N.
   double current_load_n() const;
 
@@ -70,6 +82,7 @@ private:
   std::vector<double> m_traction_length_mm; ///< rest length of each traction's sides
   double m_time_s = 0.0;
   int m_lead_tip = -1; ///< the tip the grasp follows and whose turn is measured
+  std::optional<Hand> m_hand;
 };
 
 } // namespace ligsim::membrane
