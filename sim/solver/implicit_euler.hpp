@@ -132,7 +132,7 @@ private:
   /// The supports' force (norm over the prescribed DOFs) at the start or the last accepted
   /// frame: the scale of converged()'s tolerance, N.
   double m_support_force = 0.0;
-  bool m_step_met = true; ///< the last step's equation held to iteration_tolerance
+  bool m_step_met = true;      ///< the last step's equation held to iteration_tolerance
   bool m_last_halving = false; ///< the frame's sub-steps cannot be halved again
   std::string m_failure;
   const ExtraPotential* m_extra = nullptr;
