@@ -118,24 +118,18 @@ BodyEquilibrium::BodyEquilibrium(const HyperelasticBody& body, const BoundaryCon
   if (m_dofs.free_count() == 0)
     fail("every degree of freedom is prescribed: nothing to solve");
   const Eigen::VectorXd external = m_dofs.external_forces(conditions);
-  m_load.resize(m_dofs.free_count());
-  for (int f = 0; f < m_dofs.free_count(); ++f)
-    m_load(f) = external(m_dofs.free_dofs()[static_cast<std::size_t>(f)]);
+  m_load = m_dofs.gather(external);
 }
 
 Eigen::VectorXd BodyEquilibrium::rest_unknowns() const
 {
-  Eigen::VectorXd u(m_dofs.free_count());
-  for (int f = 0; f < m_dofs.free_count(); ++f)
-    u(f) = m_rest(m_dofs.free_dofs()[static_cast<std::size_t>(f)]);
-  return u;
+  return m_dofs.gather(m_rest);
 }
 
 Eigen::VectorXd BodyEquilibrium::positions(const Eigen::VectorXd& u) const
 {
   Eigen::VectorXd x = m_rest;
-  for (int f = 0; f < m_dofs.free_count(); ++f)
-    x(m_dofs.free_dofs()[static_cast<std::size_t>(f)]) = u(f);
+  m_dofs.scatter(u, x);
   return x;
 }
 
@@ -144,9 +138,7 @@ bool BodyEquilibrium::internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& 
   Eigen::VectorXd gradient;
   if (!std::isfinite(m_body.energy_gradient(positions(u), gradient).energy))
     return false;
-  g.resize(m_dofs.free_count());
-  for (int f = 0; f < m_dofs.free_count(); ++f)
-    g(f) = gradient(m_dofs.free_dofs()[static_cast<std::size_t>(f)]);
+  g = m_dofs.gather(gradient);
   return true;
 }
 

@@ -133,4 +133,32 @@ Eigen::Vector3d reaction_moment(const ConstraintSet& set, const Eigen::VectorXd&
   return moment;
 }
 
+Eigen::VectorXd DofPartition::gather(const Eigen::VectorXd& full) const
+{
+  Eigen::VectorXd part(free_count());
+  for (std::size_t f = 0; f < m_free_dofs.size(); ++f)
+    part(static_cast<Eigen::Index>(f)) = full(m_free_dofs[f]);
+  return part;
+}
+
+void DofPartition::scatter(const Eigen::VectorXd& part, Eigen::VectorXd& full) const
+{
+  for (std::size_t f = 0; f < m_free_dofs.size(); ++f)
+    full(m_free_dofs[f]) = part(static_cast<Eigen::Index>(f));
+}
+
+void DofPartition::scatter_add(const Eigen::VectorXd& part, double scale,
+                               Eigen::VectorXd& full) const
+{
+  for (std::size_t f = 0; f < m_free_dofs.size(); ++f)
+    full(m_free_dofs[f]) += scale * part(static_cast<Eigen::Index>(f));
+}
+
+Eigen::VectorXd DofPartition::expand(const Eigen::VectorXd& part) const
+{
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(dof_count());
+  scatter(part, full);
+  return full;
+}
+
 } // namespace ligsim::sim

@@ -84,6 +84,14 @@ public:
   int free_index(int dof) const { return m_free_index[static_cast<std::size_t>(dof)]; }
   bool is_free(int dof) const { return m_free_index[static_cast<std::size_t>(dof)] >= 0; }
   const std::vector<int>& free_dofs() const { return m_free_dofs; }
+  /// The free components of `full` (#DOF), in the free numbering.
+  Eigen::VectorXd gather(const Eigen::VectorXd& full) const;
+  /// full(free) = part, where `part` is in the free numbering; prescribed components untouched.
+  void scatter(const Eigen::VectorXd& part, Eigen::VectorXd& full) const;
+  /// full(free) += scale part.
+  void scatter_add(const Eigen::VectorXd& part, double scale, Eigen::VectorXd& full) const;
+  /// A full vector (#DOF) with `part` at the free components and zero elsewhere.
+  Eigen::VectorXd expand(const Eigen::VectorXd& part) const;
   /// 1 for free DOFs, 0 for prescribed ones (the filter of filtered CG).
   const Eigen::VectorXd& free_mask() const { return m_free_mask; }
 

@@ -53,9 +53,7 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
   for (Eigen::Index e = 0; e < T.rows(); ++e)
     for (int i = 0; i < 4; ++i)
       m_mass.segment<3>(3 * T(e, i)).array() += density * body.shape(e).V0 / 4.0;
-  m_free_mass.resize(m_dofs.free_count());
-  for (int f = 0; f < m_dofs.free_count(); ++f)
-    m_free_mass(f) = m_mass(m_dofs.free_dofs()[static_cast<std::size_t>(f)]);
+  m_free_mass = m_dofs.gather(m_mass);
 
   const Points& V = body.mesh().V;
   const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
@@ -65,7 +63,6 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
 bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t,
                          FrameReport& report)
 {
-  const auto& free_dofs = m_dofs.free_dofs();
   const double alpha = m_settings.mass_damping_per_s;
   const double beta = m_settings.stiffness_damping_s;
 
@@ -82,9 +79,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
   const double stiffness_scale = h * h + h * beta;
   bool project = m_settings.projection == PsdProjection::always;
-  Eigen::VectorXd start_velocity(m_dofs.free_count());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    start_velocity(static_cast<Eigen::Index>(f)) = v(free_dofs[f]);
+  const Eigen::VectorXd start_velocity = m_dofs.gather(v);
   Eigen::VectorXd velocity = start_velocity;
   m_step_met = false;
   for (int iteration = 0; iteration < m_settings.max_iterations; ++iteration) {
@@ -110,9 +105,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
       m_failure = "a node lies inside a contact obstacle and could not be moved out";
       return false;
     }
-    Eigen::VectorXd force(m_dofs.free_count());
-    for (std::size_t f = 0; f < free_dofs.size(); ++f)
-      force(static_cast<Eigen::Index>(f)) = -gradient(free_dofs[f]);
+    const Eigen::VectorXd force = -m_dofs.gather(gradient);
 
     Eigen::VectorXd dv;
     for (bool prepared = true;; prepared = false) {
@@ -161,12 +154,8 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     // surface; the velocity change shrinks with it.
     const Eigen::VectorXd move = h * (iteration == 0 ? Eigen::VectorXd(velocity + dv) : dv);
     double fraction = 1.0;
-    if (m_extra) {
-      Eigen::VectorXd full = Eigen::VectorXd::Zero(x.size());
-      for (std::size_t f = 0; f < free_dofs.size(); ++f)
-        full(free_dofs[f]) = move(static_cast<Eigen::Index>(f));
-      fraction = std::clamp(m_extra->max_step(x, full, t), 0.0, 1.0);
-    }
+    if (m_extra)
+      fraction = std::clamp(m_extra->max_step(x, m_dofs.expand(move), t), 0.0, 1.0);
     // The state's energy and gradient: the step's result if it is done, which it is when the
     // move went all the way and the step's equation holds to `iteration_tolerance` of the
     // supports' force; else Newton goes on from here. With Newton iterations to come, a move
@@ -175,8 +164,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
     BodyEnergy after;
     for (int backtrack = 0;; ++backtrack) {
       x = x_before;
-      for (std::size_t f = 0; f < free_dofs.size(); ++f)
-        x(free_dofs[f]) += fraction * move(static_cast<Eigen::Index>(f));
+      m_dofs.scatter_add(move, fraction, x);
       after = m_body.energy_gradient(x, m_end_gradient);
       if (std::isfinite(after.energy) || m_settings.max_iterations == 1 ||
           backtrack == max_backtracks)
@@ -196,8 +184,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
       break;
     }
   }
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    v(free_dofs[f]) = velocity(static_cast<Eigen::Index>(f));
+  m_dofs.scatter(velocity, v);
   if (m_extra && !std::isfinite(m_extra->energy(x, t, nullptr))) {
     m_failure = "the step would move a node across a contact surface";
     return false;
@@ -218,12 +205,11 @@ bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
   // The equation's residual h f - M (1 + h alpha) v + M v_start (the stiffness damping's
   // h beta K v left out: it needs the matrix) against h times the supports' force at the last
   // accepted frame (not this state's, which a wrong state inflates).
+  const Eigen::VectorXd free_gradient = m_dofs.gather(gradient);
   double residual2 = 0.0;
-  const auto& free_dofs = m_dofs.free_dofs();
-  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
-    const auto i = static_cast<Eigen::Index>(f);
-    const double r = -h * gradient(free_dofs[f]) - mass_term(i) * velocity(i) +
-                     m_free_mass(i) * start_velocity(i);
+  for (Eigen::Index i = 0; i < free_gradient.size(); ++i) {
+    const double r =
+        -h * free_gradient(i) - mass_term(i) * velocity(i) + m_free_mass(i) * start_velocity(i);
     residual2 += r * r;
   }
   const double scale = h * std::max({(t * m_external).norm(), m_support_force, m_force_floor});

@@ -48,12 +48,7 @@ int StiffnessSolver::prepare(const Eigen::VectorXd& x, bool project, double stif
     if (!std::isfinite(energy->energy))
       return 0;
   }
-  Eigen::VectorXd mass_full;
-  if (mass.size() > 0) {
-    mass_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-    for (int f = 0; f < m_dofs.free_count(); ++f)
-      mass_full(m_dofs.free_dofs()[static_cast<std::size_t>(f)]) = mass(f);
-  }
+  const Eigen::VectorXd mass_full = mass.size() > 0 ? m_dofs.expand(mass) : Eigen::VectorXd();
   return m_pcg->prepare(m_body, x, project, stiffness_scale, mass_full, blocks);
 }
 
@@ -61,18 +56,11 @@ LinearSolveReport StiffnessSolver::solve(const Eigen::VectorXd& b, Eigen::Vector
 {
   if (m_direct)
     return m_direct->solve(b, y);
-  const auto& free_dofs = m_dofs.free_dofs();
-  Eigen::VectorXd b_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  Eigen::VectorXd y_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f) {
-    b_full(free_dofs[f]) = b(static_cast<Eigen::Index>(f));
-    if (y.size() == b.size())
-      y_full(free_dofs[f]) = y(static_cast<Eigen::Index>(f));
-  }
+  const Eigen::VectorXd b_full = m_dofs.expand(b);
+  Eigen::VectorXd y_full =
+      y.size() == b.size() ? m_dofs.expand(y) : Eigen::VectorXd::Zero(m_dofs.dof_count());
   const LinearSolveReport report = m_pcg->solve(b_full, y_full);
-  y.resize(b.size());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    y(static_cast<Eigen::Index>(f)) = y_full(free_dofs[f]);
+  y = m_dofs.gather(y_full);
   return report;
 }
 
@@ -82,15 +70,9 @@ void StiffnessSolver::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) con
     m_direct->multiply(x, y);
     return;
   }
-  const auto& free_dofs = m_dofs.free_dofs();
-  Eigen::VectorXd x_full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    x_full(free_dofs[f]) = x(static_cast<Eigen::Index>(f));
   Eigen::VectorXd y_full;
-  m_pcg->multiply(x_full, y_full);
-  y.resize(x.size());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    y(static_cast<Eigen::Index>(f)) = y_full(free_dofs[f]);
+  m_pcg->multiply(m_dofs.expand(x), y_full);
+  y = m_dofs.gather(y_full);
 }
 
 std::size_t StiffnessSolver::stored_values() const

@@ -100,7 +100,7 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
     for (int i = 0; i < 4; ++i)
       lumped.segment<3>(3 * T(e, i)).array() += volume / 4.0;
   }
-  m_shift_unit = free_part(lumped) * (body.material().parameters().mu_mpa / mean_size_squared);
+  m_shift_unit = m_dofs.gather(lumped) * (body.material().parameters().mu_mpa / mean_size_squared);
 }
 
 std::vector<double> StaticSolver::step_targets() const
@@ -113,15 +113,6 @@ std::vector<double> StaticSolver::step_targets() const
   return targets;
 }
 
-Eigen::VectorXd StaticSolver::free_part(const Eigen::VectorXd& full) const
-{
-  Eigen::VectorXd part(m_dofs.free_count());
-  const auto& free_dofs = m_dofs.free_dofs();
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    part(static_cast<Eigen::Index>(f)) = full(free_dofs[f]);
-  return part;
-}
-
 void StaticSolver::evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const
 {
   out.body = m_body.energy_gradient(x, out.gradient);
@@ -132,15 +123,6 @@ void StaticSolver::evaluate(const Eigen::VectorXd& x, double t, Evaluation& out)
     out.extra_inadmissible = !std::isfinite(extra);
     out.total_energy += extra;
   }
-}
-
-Eigen::VectorXd StaticSolver::full_part(const Eigen::VectorXd& direction) const
-{
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  const auto& free_dofs = m_dofs.free_dofs();
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    full(free_dofs[f]) = direction(static_cast<Eigen::Index>(f));
-  return full;
 }
 
 double StaticSolver::relative_residual(const Eigen::VectorXd& gradient, double t1) const
@@ -271,7 +253,7 @@ std::optional<StabilityMode> StaticSolver::stability_mode(const Eigen::VectorXd&
 {
   if (!m_tangent.factorize(x))
     return std::nullopt;
-  return m_tangent.lowest_mode(free_part(m_external));
+  return m_tangent.lowest_mode(m_dofs.gather(m_external));
 }
 
 bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report)
@@ -303,18 +285,16 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
     for (int i = 0; i < 4; ++i)
       coupling.segment<3>(3 * T(e, i)) += force.segment<3>(3 * i);
   }
-  const Eigen::VectorXd rhs = -free_part(at.gradient + coupling);
+  const Eigen::VectorXd rhs = -m_dofs.gather(at.gradient + coupling);
   Eigen::VectorXd predictor;
   bool saddle = false;
   if (!newton_direction(x, m_converged_t, rhs, predictor, report, true, saddle))
     predictor = Eigen::VectorXd::Zero(rhs.size()); // the prescribed move alone, checked below
 
-  const auto& free_dofs = m_dofs.free_dofs();
   BodyEnergy energy;
   for (double alpha = 1.0; alpha > 1e-3; alpha *= 0.5) {
     Eigen::VectorXd trial = target;
-    for (std::size_t f = 0; f < free_dofs.size(); ++f)
-      trial(free_dofs[f]) += alpha * predictor(static_cast<Eigen::Index>(f));
+    m_dofs.scatter_add(predictor, alpha, trial);
     if (m_extra)
       m_extra->make_admissible(trial, t1);
     energy = m_body.energy(trial);
@@ -336,24 +316,22 @@ bool StaticSolver::line_search(const Eigen::VectorXd& x, const Evaluation& curre
                                StepReport& report, Eigen::VectorXd& x_trial, Evaluation& trial,
                                double& alpha)
 {
-  const auto& free_dofs = m_dofs.free_dofs();
-  const Eigen::VectorXd residual = free_part(current.gradient);
+  const Eigen::VectorXd residual = m_dofs.gather(current.gradient);
   const double slope = residual.dot(direction); // < 0 for an energy step
   auto step_to = [&](double a) {
     x_trial = x;
-    for (std::size_t f = 0; f < free_dofs.size(); ++f)
-      x_trial(free_dofs[f]) += a * direction(static_cast<Eigen::Index>(f));
+    m_dofs.scatter_add(direction, a, x_trial);
     evaluate(x_trial, t1, trial);
   };
   // An extra potential bounds the step: no node crosses a contact surface on the way.
-  alpha = m_extra ? std::min(1.0, m_extra->max_step(x, full_part(direction), t1)) : 1.0;
+  alpha = m_extra ? std::min(1.0, m_extra->max_step(x, m_dofs.expand(direction), t1)) : 1.0;
   if (saddle) {
     // The Newton step decreases |r|^2 at the rate 2 |r|^2 whatever the inertia of K.
     const double norm = residual.norm();
     for (int k = 0; k < max_residual_search_steps; ++k, alpha *= 0.5) {
       step_to(alpha);
       if (std::isfinite(trial.total_energy) &&
-          free_part(trial.gradient).norm() <= (1.0 - armijo * alpha) * norm)
+          m_dofs.gather(trial.gradient).norm() <= (1.0 - armijo * alpha) * norm)
         return true;
       ++report.line_search_backtracks;
     }
@@ -373,7 +351,7 @@ bool StaticSolver::line_search(const Eigen::VectorXd& x, const Evaluation& curre
       if (change <= armijo * alpha * slope)
         return true;
       if (std::abs(change) <= energy_round_off * energy_scale &&
-          free_part(trial.gradient).norm() < residual.norm())
+          m_dofs.gather(trial.gradient).norm() < residual.norm())
         return true; // the energy is flat to round-off: accept a smaller residual
       // Minimiser of the quadratic through E(0), E'(0) and E(alpha), kept in [0.1, 0.5] alpha.
       const double curvature = change - alpha * slope;
@@ -417,7 +395,7 @@ bool StaticSolver::advance(Eigen::VectorXd& x, double t1, StepReport& report)
   m_convergence.restart();
   int iterations = 0;
   for (;;) {
-    const Eigen::VectorXd residual = free_part(current.gradient);
+    const Eigen::VectorXd residual = m_dofs.gather(current.gradient);
     if (!residual.allFinite()) {
       m_failure = "the internal forces are not finite";
       return false;
@@ -620,7 +598,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       report.negative_eigenvalues = m_tangent.negative_eigenvalues();
       if (report.negative_eigenvalues > 0)
         report.instability = "unstable equilibrium, past a " +
-                             m_tangent.lowest_mode(free_part(m_external)).describe();
+                             m_tangent.lowest_mode(m_dofs.gather(m_external)).describe();
     }
     Eigen::VectorXd gradient;
     report.strain_energy_mj = m_body.energy_gradient(x, gradient).energy;

@@ -167,12 +167,9 @@ private:
   /// The eigenpair nearest zero of the tangent at x, if it can be factorised.
   std::optional<StabilityMode> stability_mode(const Eigen::VectorXd& x);
   void evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const;
-  Eigen::VectorXd free_part(const Eigen::VectorXd& full) const;
   /// |free part of the gradient| / max(|load at t1|, |reactions|, force floor).
   double relative_residual(const Eigen::VectorXd& gradient, double t1) const;
   std::string describe_inversion(const BodyEnergy& energy) const;
-  /// The free part of `direction` as a full-length vector (prescribed entries zero).
-  Eigen::VectorXd full_part(const Eigen::VectorXd& direction) const;
 
   const HyperelasticBody& m_body;
   const BoundaryConditions& m_conditions;

@@ -95,10 +95,7 @@ StabilityMode TangentInertia::lowest_mode(const Eigen::VectorXd& load) const
   m_direct->multiply(v, Kv);
   mode.eigenvalue = v.dot(Kv);
   mode.load_alignment = load.norm() > 0.0 ? std::abs(v.dot(load)) / load.norm() : 0.0;
-  const auto& free_dofs = m_dofs.free_dofs();
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  for (std::size_t f = 0; f < free_dofs.size(); ++f)
-    full(free_dofs[f]) = v(static_cast<Eigen::Index>(f));
+  const Eigen::VectorXd full = m_dofs.expand(v);
   double peak = -1.0;
   for (int node = 0; node < m_dofs.dof_count() / 3; ++node) {
     const double size = full.segment<3>(3 * node).norm();

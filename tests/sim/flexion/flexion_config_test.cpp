@@ -74,9 +74,11 @@ TEST(FlexionConfig, ABadArticularValueNamesItsOwnKey)
     } catch (const ligsim::InputError& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find(key), std::string::npos) << what;
-      for (const char* other : {"modulus_mpa", "poisson", "thickness_mm", "gap_mm"})
-        if (std::string(other) != key)
+      for (const char* other : {"modulus_mpa", "poisson", "thickness_mm", "gap_mm"}) {
+        if (std::string(other) != key) {
           EXPECT_EQ(what.find(other), std::string::npos) << what;
+        }
+      }
     }
   }
 }
