@@ -25,6 +25,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <chrono>
+#include <cmath>
 
 namespace ligsim::cli {
 
@@ -134,13 +135,21 @@ struct Player {
     }
   }
 
-  /// The sheet's point under the display position (x, y): the view looks along -z at z = 0.
+  /// The sheet's point under the display position (x, y): where the ray through it meets the
+  /// sheet's plane, z = 0 (the view may have been turned).
   Vec2 point_at(int x, int y)
   {
-    renderer->SetDisplayPoint(x, y, 0.0);
-    renderer->DisplayToWorld();
-    const double* world = renderer->GetWorldPoint();
-    return Vec2(world[0] / world[3], world[1] / world[3]);
+    const auto world_at = [&](double depth) {
+      renderer->SetDisplayPoint(x, y, depth);
+      renderer->DisplayToWorld();
+      const double* w = renderer->GetWorldPoint();
+      return Eigen::Vector3d(w[0] / w[3], w[1] / w[3], w[2] / w[3]);
+    };
+    const Eigen::Vector3d near = world_at(0.0), far = world_at(1.0);
+    const double across = far.z() - near.z();
+    const double t = std::abs(across) > 1e-12 ? -near.z() / across : 0.0;
+    const Eigen::Vector3d on_sheet = near + t * (far - near);
+    return Vec2(on_sheet.x(), on_sheet.y());
   }
 
   /// `frame_every` steps (fewer at the end), then a drawn (and recorded) frame.
