@@ -15,12 +15,22 @@
 
 namespace ligsim::fuzz {
 
-/// The input bytes in one temporary file per process, with the extension that picks the reader.
+/// The input bytes in one temporary file per process, with the extension that picks the reader;
+/// the file goes when the process ends.
 inline std::filesystem::path write_input_file(const std::uint8_t* data, std::size_t size,
                                               const std::string& extension)
 {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     ("ligsim_fuzz_" + std::to_string(::getpid()) + extension);
+  struct InputFile {
+    std::filesystem::path path;
+    ~InputFile()
+    {
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+    }
+  };
+  static InputFile input{std::filesystem::temp_directory_path() /
+                         ("ligsim_fuzz_" + std::to_string(::getpid()) + extension)};
+  const std::filesystem::path& file = input.path;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return file;

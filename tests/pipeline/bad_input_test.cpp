@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
-#include <unistd.h>
 
 using namespace ligsim::test;
 namespace fs = std::filesystem;
@@ -46,9 +45,11 @@ void expect_clean_failure(const std::string& arguments, const fs::path& out,
     }
 }
 
+/// `text` in a file of this process's scratch root (removed when the tests end).
 fs::path write_text(const std::string& name, const std::string& text)
 {
-  const fs::path file = fs::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
+  fs::create_directories(scratch_root());
+  const fs::path file = scratch_root() / name;
   std::ofstream(file) << text;
   return file;
 }
@@ -80,8 +81,7 @@ TEST(BuildBadInput, OpenSurface)
 TEST(BuildBadInput, NanCoordinate)
 {
   // A binary STL tetrahedron, one corner NaN, as a broken export writes it.
-  const fs::path file =
-      fs::temp_directory_path() / (std::to_string(::getpid()) + "_ligsim_nan.stl");
+  const fs::path file = write_text("ligsim_nan.stl", "");
   {
     const float nan = std::nanf("");
     const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}};

@@ -38,10 +38,19 @@ std::string febio()
   GTEST_SKIP() << "FEBio not given: configure with -DLIGSIM_FEBIO=/path/to/febio4 or set "         \
                   "LIGSIM_FEBIO to run the FEBio cross-checks"
 
+/// An empty folder of its own under this process's scratch root, removed when the tests end.
 fs::path fresh_folder(const std::string& name)
 {
-  const fs::path dir =
-      fs::temp_directory_path() / ("ligsim_febio_" + std::to_string(::getpid()) + "_" + name);
+  struct Root {
+    fs::path path = fs::temp_directory_path() / ("ligsim_febio_" + std::to_string(::getpid()));
+    ~Root()
+    {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Root root;
+  const fs::path dir = root.path / name;
   fs::remove_all(dir);
   ensure_directory(dir);
   return dir;
