@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -210,4 +212,49 @@ TEST(ViewCli, AScriptedHandPullsTheSheetHeldAtItsOtherSideAndItTears)
                             " --record " + (dir / "off").string());
   EXPECT_NE(off.exit_code, 0);
   EXPECT_NE(off.stderr_text.find("is not on the sheet"), std::string::npos) << off.stderr_text;
+}
+
+/// The four-ligament HRA knee on its live mesh (docs/view.md): dragged to 90 degrees, each
+/// ligament's last frame at the quasi-static sweep's femur force and regional peak.
+TEST(ViewCli, TheFourLigamentKneeLiveEndsAtItsQuasiStaticState)
+{
+  if (!has_xvfb())
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const fs::path model = fresh_folder("view_knee_model");
+  const CliResult built = run_ligsim(
+      "build --config " + source_path("data/hra-knee/knee.toml").string() +
+      " --cell-size 2.5 --facet-size 2.5 --facet-distance 0.3 --no-images --out " + model.string());
+  ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
+  const std::string config = source_path("data/hra-knee/flexion.toml").string();
+  const fs::path sweep = fresh_folder("view_knee_sweep");
+  const CliResult swept = run_ligsim("flexion --config " + config + " --model " + model.string() +
+                                     " --angles 0,90 --no-images --out " + sweep.string());
+  ASSERT_EQ(swept.exit_code, 0) << swept.stderr_text;
+  const fs::path script = fresh_folder("view_knee_script") += ".csv";
+  std::ofstream(script) << "time_s,angle_deg\n0,0\n2,90\n3,90\n";
+  const fs::path record = fresh_folder("view_knee_record");
+  const CliResult viewed = run_on_virtual_screen("view --config " + config + " --model " +
+                                                 model.string() + " --script " + script.string() +
+                                                 " --record " + record.string() + " --size 320");
+  ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
+
+  const std::vector<std::string> rows = lines(record / "frames.csv");
+  ASSERT_EQ(rows.size(), 301u);
+  const std::vector<std::string> header = csv_cells(rows[0]);
+  const std::vector<std::string> last = csv_cells(rows.back());
+  const nlohmann::json ligaments = read_json(sweep / "summary.json")["results"]["ligaments"];
+  ASSERT_EQ(ligaments.size(), 4u);
+  for (const auto& [name, ligament] : ligaments.items()) {
+    const nlohmann::json& at_90 = ligament["angles"][1];
+    ASSERT_DOUBLE_EQ(at_90["angle_deg"].get<double>(), 90.0);
+    const auto column = [&](const std::string& title) {
+      const auto found = std::find(header.begin(), header.end(), title);
+      EXPECT_NE(found, header.end()) << title;
+      return found == header.end() ? NAN : std::stod(last[found - header.begin()]);
+    };
+    const double force = at_90["femur_force_magnitude_n"];
+    const double regional = 100.0 * at_90["max_regional_fiber_strain"].get<double>();
+    EXPECT_NEAR(column(name + "_femur_force_n"), force, 0.05 * force) << name;
+    EXPECT_NEAR(column(name + "_regional_peak_pct"), regional, 0.05 * regional) << name;
+  }
 }
