@@ -65,6 +65,19 @@ TEST(ViewCli, WithoutADisplayItSaysSoAndGivesTheXvfbLine)
 
 namespace {
 
+/// Plays the slider dragged from 0 to 90 degrees in 2 s (the femur's own speed limit,
+/// 45 deg/s), then held for 1 s while the tissue settles: 300 frames of 10 ms, recorded in
+/// `record`.
+CliResult drag_to_90_degrees(const std::string& name, const std::string& config,
+                             const fs::path& model, const fs::path& record)
+{
+  const fs::path script = fresh_folder("view_script_" + name) += ".csv";
+  std::ofstream(script) << "time_s,angle_deg\n0,0\n2,90\n3,90\n";
+  return run_on_virtual_screen("view --config " + config + " --model " + model.string() +
+                               " --script " + script.string() + " --record " + record.string() +
+                               " --size 320");
+}
+
 /// Builds an MCL (`build`: the build command's config and flags), sweeps it quasi-statically to
 /// 90 degrees with the flexion config `flexion`, and drags the live window's slider there: every
 /// frame drawn and recorded, the overlay's figures and frames.pvd those of the frames, the last
@@ -85,14 +98,8 @@ void expect_drag_to_90_degrees_ends_at_the_quasi_static_state(const std::string&
   const double quasi_static = at_90["femur_force_magnitude_n"];
   const double regional_pct = 100.0 * at_90["max_regional_fiber_strain"].get<double>();
 
-  // The slider dragged from 0 to 90 degrees in 2 s (the femur's own speed limit, 45 deg/s),
-  // then held for 1 s while the tissue settles: 300 frames of 10 ms.
-  const fs::path script = fresh_folder("view_script_" + name) += ".csv";
-  std::ofstream(script) << "time_s,angle_deg\n0,0\n2,90\n3,90\n";
   const fs::path record = fresh_folder("view_record_" + name);
-  const CliResult viewed = run_on_virtual_screen("view --config " + config + " --model " +
-                                                 model.string() + " --script " + script.string() +
-                                                 " --record " + record.string() + " --size 320");
+  const CliResult viewed = drag_to_90_degrees(name, config, model, record);
   ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
 
   const std::vector<std::string> rows = lines(record / "frames.csv");
@@ -230,12 +237,8 @@ TEST(ViewCli, TheFourLigamentKneeLiveEndsAtItsQuasiStaticState)
   const CliResult swept = run_ligsim("flexion --config " + config + " --model " + model.string() +
                                      " --angles 0,90 --no-images --out " + sweep.string());
   ASSERT_EQ(swept.exit_code, 0) << swept.stderr_text;
-  const fs::path script = fresh_folder("view_knee_script") += ".csv";
-  std::ofstream(script) << "time_s,angle_deg\n0,0\n2,90\n3,90\n";
-  const fs::path record = fresh_folder("view_knee_record");
-  const CliResult viewed = run_on_virtual_screen("view --config " + config + " --model " +
-                                                 model.string() + " --script " + script.string() +
-                                                 " --record " + record.string() + " --size 320");
+  const fs::path record = fresh_folder("view_record_knee");
+  const CliResult viewed = drag_to_90_degrees("knee", config, model, record);
   ASSERT_EQ(viewed.exit_code, 0) << viewed.stderr_text;
 
   const std::vector<std::string> rows = lines(record / "frames.csv");
