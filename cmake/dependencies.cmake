@@ -6,15 +6,21 @@ find_package(CLI11 REQUIRED)
 find_package(tomlplusplus REQUIRED)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph)
 find_package(CGAL REQUIRED)
-find_package(VTK REQUIRED COMPONENTS
+# VTK's data, filter and file modules serve every layer; its rendering modules only the edge
+# (pipeline/render, pipeline/view), so that the core links without OpenGL or a display.
+set(LIGSIM_VTK_DATA_COMPONENTS
   CommonCore CommonDataModel CommonExecutionModel
   FiltersCore FiltersGeneral FiltersGeometry FiltersSources
-  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage ImagingGeneral
-  # Pictures (sim/flexion/render): off-screen OpenGL through X, text, charts.
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage ImagingGeneral)
+set(LIGSIM_VTK_RENDERING_COMPONENTS
+  # Pictures: off-screen OpenGL through X, text, charts.
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingAnnotation InteractionStyle
-  # The live window (pipeline/view): the angle slider.
+  # The live window: the angle slider.
   InteractionWidgets
   ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2)
+find_package(VTK REQUIRED COMPONENTS ${LIGSIM_VTK_DATA_COMPONENTS} ${LIGSIM_VTK_RENDERING_COMPONENTS})
+list(TRANSFORM LIGSIM_VTK_DATA_COMPONENTS PREPEND VTK:: OUTPUT_VARIABLE LIGSIM_VTK_DATA)
+list(TRANSFORM LIGSIM_VTK_RENDERING_COMPONENTS PREPEND VTK:: OUTPUT_VARIABLE LIGSIM_VTK_RENDERING)
 # Xlib, to check that an X display answers before rendering on it.
 find_package(X11 REQUIRED)
 

@@ -5,8 +5,8 @@
 #include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/vtk_files.hpp"
-#include "sim/flexion/render/anatomy_picture.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
+#include "pipeline/render/anatomy_picture.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -70,7 +70,7 @@ void write_anatomy_outputs(const fs::path& dir, bool picture)
     return;
   std::vector<vtkSmartPointer<vtkPolyData>> bones, ligaments;
   read_surfaces(dir, bones, ligaments);
-  sim::AnatomyPicture scene;
+  render::AnatomyPicture scene;
   for (const auto& bone : bones)
     scene.bones.push_back(bone);
   for (const auto& ligament : ligaments)
@@ -86,8 +86,8 @@ void write_anatomy_outputs(const fs::path& dir, bool picture)
   scene.medial = anatomy.side == "right" ? Eigen::Vector3d(-right) : right;
   scene.caption = anatomy.side.empty() ? "side not known" : "a " + anatomy.side + " knee";
   try {
-    const sim::OffscreenDisplay display;
-    sim::render_anatomy_png(scene, dir / "anatomy.png");
+    const render::OffscreenDisplay display;
+    render::render_anatomy_png(scene, dir / "anatomy.png");
     log_info(fmt::format("anatomy: the landmarks drawn on the bones in {}",
                          (dir / "anatomy.png").string()));
   } catch (const Error& e) {

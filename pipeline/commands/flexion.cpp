@@ -6,15 +6,15 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "pipeline/render/flexion_pictures.hpp"
+#include "pipeline/render/knee_pictures.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 #include "sim/flexion/flexion_output.hpp"
-#include "sim/flexion/flexion_pictures.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
-#include "sim/flexion/knee_pictures.hpp"
 #include "sim/flexion/knee_sweep.hpp"
 #include "sim/flexion/ligament_pairs.hpp"
 #include "sim/flexion/plausibility.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -262,7 +262,7 @@ void run_flexion(const FlexionJobOptions& options)
   for (const sim::LigamentModel& ligament : ligaments)
     log_footprints(sim::footprints(ligament.model, motion.axis.axis), ligament.name);
   // Before anything is written: a display for the pictures, or the reason there is none.
-  std::optional<sim::OffscreenDisplay> display;
+  std::optional<render::OffscreenDisplay> display;
   if (settings.images)
     display.emplace();
   summary.add_stage("setup", setup_meter, {{"ligaments", names}});
@@ -292,12 +292,13 @@ void run_flexion(const FlexionJobOptions& options)
     parts.push_back({ligament.name, knee ? ligament.name : "", ligament.model.distal_bone});
   sim::FlexionOutput output(parts, bones, femur_motion, options.out);
   // A one-ligament model keeps its own pictures (coloured by strain energy, with fibers).
-  std::optional<sim::FlexionPictures> ligament_pictures;
+  std::optional<render::FlexionPictures> ligament_pictures;
   if (!knee)
     ligament_pictures.emplace(bones, output, motion.axis.axis, settings.image_angles_deg,
                               options.out);
-  sim::KneePictures knee_pictures(bones, output, sim::effective_anatomy(bones, settings),
-                                  motion.axis.axis, names, settings.image_angles_deg, options.out);
+  render::KneePictures knee_pictures(bones, output, sim::effective_anatomy(bones, settings),
+                                     motion.axis.axis, names, settings.image_angles_deg,
+                                     options.out);
   std::map<double, std::vector<Eigen::VectorXd>> states; // per angle, per ligament
   StageMeter sweep_meter;
   const std::vector<sim::LigamentSweep> sweeps = sim::run_knee_sweep(

@@ -5,6 +5,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/study/cohort_table.hpp"
 #include "pipeline/study/convergence_study.hpp"
@@ -12,7 +13,6 @@
 #include "pipeline/study/sensitivity_variants.hpp"
 #include "pipeline/study/study_model.hpp"
 #include "sim/flexion/flexion_config.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -133,7 +133,7 @@ void run_study_job(const StudyOptions& o, const std::string& name, nlohmann::jso
   parameters["ligaments"] = ligaments;
   parameters["contact"] = "none: the ligament may pass through the bones";
   summary.parameters() = parameters;
-  std::optional<sim::OffscreenDisplay> display;
+  std::optional<render::OffscreenDisplay> display;
   if (!o.no_png)
     display.emplace();
   ensure_directory(o.out);
@@ -220,7 +220,7 @@ void run_cohort(const CohortOptions& o)
     members.push_back({text.substr(0, equals), text.substr(equals + 1)});
     summary.inputs()[members.back().name] = members.back().flexion_dir.string();
   }
-  std::optional<sim::OffscreenDisplay> display;
+  std::optional<render::OffscreenDisplay> display;
   if (!o.no_png)
     display.emplace();
   summary.parameters()["ligaments"] = o.ligaments;

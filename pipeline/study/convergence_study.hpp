@@ -33,7 +33,7 @@ struct ConvergenceInputs {
   sim::FlexionSettings flexion; ///< its model_dir is ignored: each run builds its own
   ConvergenceLadder ladder;
   std::filesystem::path out;
-  bool png = true; ///< the plot as PNG too (needs an X display: sim::OffscreenDisplay)
+  bool png = true; ///< the plot as PNG too (needs an X display: render::OffscreenDisplay)
 };
 
 /// Runs the ladders into `out` (models in out/models/<name>, reused when current) and writes

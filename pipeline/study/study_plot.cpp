@@ -2,7 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
@@ -51,7 +51,7 @@ void write_png(const PlotSpec& spec, const std::filesystem::path& png)
 {
   constexpr int width = 1100, height = 750, font = 18;
   vtkNew<vtkContextView> view;
-  sim::prepare_offscreen_window(view->GetRenderWindow(), width, height);
+  render::prepare_offscreen_window(view->GetRenderWindow(), width, height);
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartXY> chart;
   view->GetScene()->AddItem(chart);
@@ -98,7 +98,7 @@ void write_png(const PlotSpec& spec, const std::filesystem::path& png)
     style_text(axis->GetTitleProperties(), font, false);
     style_text(axis->GetLabelProperties(), font - 3, false);
   }
-  sim::write_window_png(view->GetRenderWindow(), png);
+  render::write_window_png(view->GetRenderWindow(), png);
 }
 
 } // namespace

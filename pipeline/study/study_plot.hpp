@@ -1,7 +1,7 @@
 #pragma once
 /// @brief The studies' plots: several curves on one chart (log or linear axes, a legend), written
 /// both as SVG (common/svg_plot) and as PNG (VTK charts rendered off-screen; needs an X display,
-/// so create a sim::OffscreenDisplay first).
+/// so create a render::OffscreenDisplay first).
 
 #include "common/svg_plot.hpp"
 

@@ -5,8 +5,8 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/vtk_files.hpp"
-#include "sim/flexion/render/picture_parts.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/picture_parts.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <X11/Xlib.h>
 #include <fmt/format.h>
@@ -243,7 +243,8 @@ struct LiveWindow::Scene {
     if (next_target)
       next = std::async(std::launch::async, [this, target = *next_target] { compute(target); });
     if (!options.record.empty()) {
-      sim::write_window_png(window, options.record / fmt::format("frame_{:05d}.png", ++recorded));
+      render::write_window_png(window,
+                               options.record / fmt::format("frame_{:05d}.png", ++recorded));
       record_series(time_s);
     } else {
       window->Render();
@@ -288,7 +289,7 @@ struct LiveWindow::Scene {
   {
     const fs::path folder = options.record.empty() ? fs::current_path() : options.record;
     const fs::path png = folder / fmt::format("screenshot_{:03d}.png", ++screenshots);
-    sim::write_window_png(window, png);
+    render::write_window_png(window, png);
     log_info("view: " + png.string());
   }
 
@@ -316,15 +317,15 @@ LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
   s.window->SetSize(s.options.width, s.options.height);
   s.window->SetMultiSamples(0); // FXAA smooths the edges; multisampled buffers read back black
   s.window->SetWindowName("ligsim view");
-  s.renderer = sim::add_white_renderer(s.window);
+  s.renderer = render::add_white_renderer(s.window);
   s.renderer->UseFXAAOff(); // a full-screen pass per frame: a tenth of a frame on llvmpipe
   s.bones_shown.push_back(for_display(bones.femur));
   s.bones_shown.push_back(for_display(bones.tibia));
   if (bones.fibula)
     s.bones_shown.push_back(for_display(bones.fibula));
-  s.femur = sim::add_bone(s.renderer, s.bones_shown[0], 1.0);
+  s.femur = render::add_bone(s.renderer, s.bones_shown[0], 1.0);
   for (std::size_t b = 1; b < s.bones_shown.size(); ++b)
-    sim::add_bone(s.renderer, s.bones_shown[b], 1.0);
+    render::add_bone(s.renderer, s.bones_shown[b], 1.0);
   s.colours->SetRange(0.0, s.options.strain_range_pct);
   s.colours->SetHueRange(0.667, 0.0);
   s.colours->Build();
@@ -360,7 +361,7 @@ LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
     low = low.cwiseMin(mesh.V.colwise().minCoeff().transpose());
     high = high.cwiseMax(mesh.V.colwise().maxCoeff().transpose());
   }
-  sim::add_scale_bar(s.renderer, s.colours, "fiber strain (%)", 14, 0.88, 0.1);
+  render::add_scale_bar(s.renderer, s.colours, "fiber strain (%)", 14, 0.88, 0.1);
   s.overlay->GetTextProperty()->SetFontSize(16);
   s.overlay->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
   s.overlay->SetDisplayPosition(10, 60);

@@ -3,9 +3,9 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "pipeline/render/picture_parts.hpp"
+#include "pipeline/render/window_png.hpp"
 #include "pipeline/view/view_style.hpp"
-#include "sim/flexion/render/picture_parts.hpp"
-#include "sim/flexion/render/window_png.hpp"
 #include "sim/membrane/output/membrane_frame.hpp"
 #include "sim/membrane/output/tear_path.hpp"
 
@@ -56,7 +56,7 @@ struct Player {
     window->SetSize(options.width, options.width);
     window->SetMultiSamples(0);
     window->SetWindowName("ligsim view");
-    renderer = sim::add_white_renderer(window);
+    renderer = render::add_white_renderer(window);
     renderer->UseFXAAOff();
     colours->SetRange(0.0, 1.0); // the criterion tears at 1
     colours->SetHueRange(0.15, 0.0);
@@ -70,7 +70,7 @@ struct Player {
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     renderer->AddActor(actor);
-    sim::add_scale_bar(renderer, colours, "tearing criterion c", 14, 0.86, 0.12);
+    render::add_scale_bar(renderer, colours, "tearing criterion c", 14, 0.86, 0.12);
     overlay->GetTextProperty()->SetFontSize(16);
     overlay->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
     overlay->SetDisplayPosition(10, 10);
@@ -166,7 +166,7 @@ struct Player {
     ++drawn;
     show();
     if (!options.record.empty())
-      sim::write_window_png(window, options.record / fmt::format("frame_{:05d}.png", drawn));
+      render::write_window_png(window, options.record / fmt::format("frame_{:05d}.png", drawn));
     else
       window->Render();
   }
@@ -199,7 +199,7 @@ int play_membrane(TearSimulation& simulation, const MembraneWindowOptions& optio
         const std::filesystem::path folder =
             options.record.empty() ? std::filesystem::current_path() : options.record;
         const auto png = folder / fmt::format("screenshot_{:03d}.png", ++player.screenshots);
-        sim::write_window_png(player.window, png);
+        render::write_window_png(player.window, png);
         log_info("view: " + png.string());
       } else if (key == "q" || key == "Escape")
         interactor->TerminateApp();

@@ -1,9 +1,9 @@
 #include "common/error.hpp"
-#include "sim/flexion/render/gl_driver.hpp"
-#include "sim/flexion/render/ligament_picture.hpp"
-#include "sim/flexion/render/line_plot_picture.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/gl_driver.hpp"
+#include "pipeline/render/ligament_picture.hpp"
+#include "pipeline/render/line_plot_picture.hpp"
+#include "pipeline/render/offscreen_display.hpp"
+#include "pipeline/render/window_png.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -37,10 +37,10 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using ligsim::sim::LigamentPicture;
-using ligsim::sim::LinePlot;
-using ligsim::sim::OffscreenDisplay;
-using ligsim::sim::PictureCamera;
+using ligsim::render::LigamentPicture;
+using ligsim::render::LinePlot;
+using ligsim::render::OffscreenDisplay;
+using ligsim::render::PictureCamera;
 
 namespace {
 
@@ -248,15 +248,15 @@ TEST(OffscreenDisplay, GlDriverStaysLoadedAfterItsWindowCloses)
   std::vector<std::string> while_open;
   {
     vtkNew<vtkRenderWindow> window;
-    ligsim::sim::prepare_offscreen_window(window, 64, 64);
+    ligsim::render::prepare_offscreen_window(window, 64, 64);
     vtkNew<vtkRenderer> renderer;
     window->AddRenderer(renderer);
-    ligsim::sim::write_window_png(window, test_dir.path() / "empty.png");
-    while_open = ligsim::sim::loaded_gl_drivers();
+    ligsim::render::write_window_png(window, test_dir.path() / "empty.png");
+    while_open = ligsim::render::loaded_gl_drivers();
   }
   if (while_open.empty())
     GTEST_SKIP() << "VTK renders without a Mesa DRI driver here";
-  const std::vector<std::string> after = ligsim::sim::loaded_gl_drivers();
+  const std::vector<std::string> after = ligsim::render::loaded_gl_drivers();
   for (const std::string& driver : while_open)
     EXPECT_NE(std::find(after.begin(), after.end(), driver), after.end())
         << driver << " was unloaded";
@@ -406,7 +406,7 @@ TEST(LigamentPicture, GreenLowRedHighWithBoneOnWhite)
   const TestDir test_dir("ligament");
   const fs::path& dir = test_dir.path();
   const fs::path file = dir / "flexion_045.png";
-  ligsim::sim::render_ligament_png(picture, camera, file);
+  ligsim::render::render_ligament_png(picture, camera, file);
   ASSERT_TRUE(fs::exists(file));
   EXPECT_EQ(file_count(dir), 1u);
 
@@ -418,9 +418,9 @@ TEST(LigamentPicture, GreenLowRedHighWithBoneOnWhite)
   auto reddish = [](const std::array<int, 3>& c) { return c[0] > c[1] + 60; };
   auto white = [](const std::array<int, 3>& c) { return c[0] > 250 && c[1] > 250 && c[2] > 250; };
   auto bone_like = [](const std::array<int, 3>& c) {
-    const std::array<double, 3> expected = {255 * ligsim::sim::kBoneColour.x(),
-                                            255 * ligsim::sim::kBoneColour.y(),
-                                            255 * ligsim::sim::kBoneColour.z()};
+    const std::array<double, 3> expected = {255 * ligsim::render::kBoneColour.x(),
+                                            255 * ligsim::render::kBoneColour.y(),
+                                            255 * ligsim::render::kBoneColour.z()};
     for (int k = 0; k < 3; ++k)
       if (std::abs(c[k] - expected[k]) > 25)
         return false;
@@ -458,10 +458,10 @@ TEST(LigamentPicture, MissingArrayOrBadCameraIsAnInputError)
   picture.ligament = ligament;
   PictureCamera camera;
   camera.up = camera.view_direction;
-  EXPECT_THROW(ligsim::sim::render_ligament_png(picture, camera, file), ligsim::InputError);
+  EXPECT_THROW(ligsim::render::render_ligament_png(picture, camera, file), ligsim::InputError);
 
   ligament->GetCellData()->RemoveArray("fiber_direction");
-  EXPECT_THROW(ligsim::sim::render_ligament_png(picture, PictureCamera{}, file),
+  EXPECT_THROW(ligsim::render::render_ligament_png(picture, PictureCamera{}, file),
                ligsim::InputError);
   EXPECT_FALSE(fs::exists(file));
 }
@@ -482,7 +482,7 @@ TEST(LinePlot, RightSizeAndNotBlank)
   const TestDir test_dir("plot");
   const fs::path& dir = test_dir.path();
   const fs::path file = dir / "energy.png";
-  ligsim::sim::render_line_plot_png(plot, file);
+  ligsim::render::render_line_plot_png(plot, file);
   EXPECT_EQ(file_count(dir), 1u);
 
   const Png png = read_png(file);
@@ -507,7 +507,8 @@ TEST(LinePlot, MismatchedDataIsAnInputError)
   plot.x = {0.0, 1.0};
   plot.y = {0.0};
   const TestDir dir("bad_plot");
-  EXPECT_THROW(ligsim::sim::render_line_plot_png(plot, dir.path() / "p.png"), ligsim::InputError);
+  EXPECT_THROW(ligsim::render::render_line_plot_png(plot, dir.path() / "p.png"),
+               ligsim::InputError);
 }
 
 TEST(LigamentPicture, TenThousandTetsFullSize)
@@ -526,7 +527,7 @@ TEST(LigamentPicture, TenThousandTetsFullSize)
   const TestDir dir("large");
   const fs::path file = dir.path() / "large.png";
   const auto start = std::chrono::steady_clock::now();
-  ligsim::sim::render_ligament_png(picture, camera, file);
+  ligsim::render::render_ligament_png(picture, camera, file);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   RecordProperty("render_seconds", std::to_string(seconds));

@@ -1,8 +1,8 @@
-#include "sim/flexion/flexion_pictures.hpp"
+#include "pipeline/render/flexion_pictures.hpp"
 
-#include "sim/flexion/render/ligament_picture.hpp"
-#include "sim/flexion/render/line_plot_picture.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
+#include "pipeline/render/ligament_picture.hpp"
+#include "pipeline/render/line_plot_picture.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkPolyData.h>
@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace fs = std::filesystem;
 
@@ -19,7 +19,7 @@ namespace {
 
 /// One camera for every angle: looking along the flexion axis from the ligament's side, femur
 /// up, framing the ligament in all the states drawn.
-PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
+PictureCamera sweep_camera(const sim::KneeModel& model, const sim::FlexionAxis& axis,
                            const std::map<double, Eigen::VectorXd>& states, int width, int height)
 {
   const Eigen::Vector3d a = axis.direction.normalized();
@@ -27,7 +27,7 @@ PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
   const double side = (ligament_centre - axis.point_mm).dot(a) >= 0.0 ? 1.0 : -1.0;
   PictureCamera camera;
   camera.view_direction = -side * a;
-  const Eigen::Vector3d proximal = proximal_direction(model);
+  const Eigen::Vector3d proximal = sim::proximal_direction(model);
   Eigen::Vector3d up = proximal - proximal.dot(camera.view_direction) * camera.view_direction;
   if (up.norm() < 1e-9)
     up = camera.view_direction.unitOrthogonal();
@@ -57,8 +57,8 @@ PictureCamera sweep_camera(const KneeModel& model, const FlexionAxis& axis,
 
 } // namespace
 
-FlexionPictures::FlexionPictures(const KneeModel& model, const FlexionOutput& output,
-                                 const FlexionAxis& axis, std::vector<double> angles_deg,
+FlexionPictures::FlexionPictures(const sim::KneeModel& model, const sim::FlexionOutput& output,
+                                 const sim::FlexionAxis& axis, std::vector<double> angles_deg,
                                  fs::path directory)
     : m_model(model)
     , m_output(output)
@@ -68,7 +68,7 @@ FlexionPictures::FlexionPictures(const KneeModel& model, const FlexionOutput& ou
 {
 }
 
-void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x,
+void FlexionPictures::keep(const sim::AngleResult& angle, const Eigen::VectorXd& x,
                            vtkSmartPointer<vtkUnstructuredGrid> ligament)
 {
   for (double wanted : m_angles)
@@ -83,7 +83,7 @@ void FlexionPictures::keep(const AngleResult& angle, const Eigen::VectorXd& x,
     }
 }
 
-std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& angles) const
+std::vector<fs::path> FlexionPictures::render(const std::vector<sim::AngleResult>& angles) const
 {
   std::vector<fs::path> written;
   OffscreenDisplay display;
@@ -101,9 +101,9 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
       const vtkSmartPointer<vtkPolyData> femur = m_output.moved_femur(m_load_factors.at(angle));
       picture.ligament = grid;
       picture.bones = {femur, m_model.tibia};
-      picture.caption = "flexion " + angle_label(angle) + " deg";
+      picture.caption = "flexion " + sim::angle_label(angle) + " deg";
       picture.contact_points_mm = m_contacts.at(angle);
-      const fs::path png = m_directory / ("ligament_" + angle_label(angle) + ".png");
+      const fs::path png = m_directory / ("ligament_" + sim::angle_label(angle) + ".png");
       render_ligament_png(picture, camera, png);
       written.push_back(png);
     }
@@ -113,7 +113,7 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
   plot.title = "Strain energy of the ligament across flexion";
   plot.x_label = "flexion angle (deg)";
   plot.y_label = "strain energy (mJ)";
-  for (const AngleResult& angle : angles) {
+  for (const sim::AngleResult& angle : angles) {
     plot.x.push_back(angle.angle_deg);
     plot.y.push_back(angle.strain_energy_mj);
   }
@@ -124,4 +124,4 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<AngleResult>& an
   return written;
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

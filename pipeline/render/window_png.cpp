@@ -1,9 +1,9 @@
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
-#include "sim/flexion/render/gl_driver.hpp"
+#include "pipeline/render/gl_driver.hpp"
 
 #include <vtkNew.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -11,7 +11,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkWindowToImageFilter.h>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 void prepare_offscreen_window(vtkRenderWindow* window, int width, int height)
 {
@@ -55,4 +55,4 @@ void write_window_png(vtkRenderWindow* window, const std::filesystem::path& png)
   file.commit();
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

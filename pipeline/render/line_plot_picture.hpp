@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 struct LinePlot {
   std::string title, x_label, y_label;
@@ -18,4 +18,4 @@ struct LinePlot {
 /// Throws InputError on mismatched, empty or non-finite data, a bad size or a failed write.
 void render_line_plot_png(const LinePlot& plot, const std::filesystem::path& png);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,4 +1,4 @@
-#include "sim/flexion/render/gl_driver.hpp"
+#include "pipeline/render/gl_driver.hpp"
 
 #include <dlfcn.h>
 #include <link.h>
@@ -6,7 +6,7 @@
 #include <mutex>
 #include <set>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 std::vector<std::string> loaded_gl_drivers()
 {
@@ -36,4 +36,4 @@ void keep_gl_drivers_loaded()
       dlopen(driver.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -14,27 +14,28 @@
 #include <map>
 #include <vector>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 class FlexionPictures {
 public:
   /// `angles_deg`: the angles to draw (others are not kept).
-  FlexionPictures(const KneeModel& model, const FlexionOutput& output, const FlexionAxis& axis,
-                  std::vector<double> angles_deg, std::filesystem::path directory);
+  FlexionPictures(const sim::KneeModel& model, const sim::FlexionOutput& output,
+                  const sim::FlexionAxis& axis, std::vector<double> angles_deg,
+                  std::filesystem::path directory);
 
-  /// Keeps the state and the ligament as written (FlexionOutput::write_angle) if `angle` is one
-  /// to draw.
-  void keep(const AngleResult& angle, const Eigen::VectorXd& x,
+  /// Keeps the state and the ligament as written (sim::FlexionOutput::write_angle) if `angle` is
+  /// one to draw.
+  void keep(const sim::AngleResult& angle, const Eigen::VectorXd& x,
             vtkSmartPointer<vtkUnstructuredGrid> ligament);
 
   /// Renders ligament_<angle>.png for the kept states and strain_energy.png for the sweep;
   /// returns the files written. Starts a private X server when there is no display.
-  std::vector<std::filesystem::path> render(const std::vector<AngleResult>& angles) const;
+  std::vector<std::filesystem::path> render(const std::vector<sim::AngleResult>& angles) const;
 
 private:
-  const KneeModel& m_model;
-  const FlexionOutput& m_output;
-  FlexionAxis m_axis;
+  const sim::KneeModel& m_model;
+  const sim::FlexionOutput& m_output;
+  sim::FlexionAxis m_axis;
   std::vector<double> m_angles;
   std::filesystem::path m_directory;
   std::map<double, Eigen::VectorXd> m_states;
@@ -43,4 +44,4 @@ private:
   std::map<double, double> m_load_factors;
 };
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,4 +1,4 @@
-#include "sim/flexion/render/picture_parts.hpp"
+#include "pipeline/render/picture_parts.hpp"
 
 #include "common/error.hpp"
 
@@ -21,7 +21,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 void check_camera(const PictureCamera& camera)
 {
@@ -105,4 +105,4 @@ void add_caption(vtkRenderer* renderer, const std::string& caption, int height)
   renderer->AddViewProp(text);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -3,7 +3,7 @@
 /// a coloured ball with its name, seen from the front and from the medial side, so that a user
 /// can check at a glance where the epicondyles, the notch and the plateau were put.
 ///
-/// Needs an X display: create an OffscreenDisplay first (sim/flexion/render/offscreen_display.hpp).
+/// Needs an X display: create an OffscreenDisplay first (pipeline/render/offscreen_display.hpp).
 
 #include <Eigen/Core>
 
@@ -13,7 +13,7 @@
 
 class vtkPolyData;
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 struct AnatomyPicture {
   std::vector<vtkPolyData*> bones;     ///< bone surfaces (mm). Not owned.
@@ -32,4 +32,4 @@ struct AnatomyPicture {
 /// other; Error if VTK cannot render.
 void render_anatomy_png(const AnatomyPicture& picture, const std::filesystem::path& png);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

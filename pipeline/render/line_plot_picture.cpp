@@ -1,7 +1,7 @@
-#include "sim/flexion/render/line_plot_picture.hpp"
+#include "pipeline/render/line_plot_picture.hpp"
 
 #include "common/error.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
@@ -19,7 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace {
 
@@ -84,4 +84,4 @@ void render_line_plot_png(const LinePlot& plot, const std::filesystem::path& png
   write_window_png(view->GetRenderWindow(), png);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

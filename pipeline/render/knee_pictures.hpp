@@ -15,29 +15,29 @@
 #include <string>
 #include <vector>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 class KneePictures {
 public:
   /// `bones`: the knee's bones (femur, tibia, fibula); `anatomy`: its directions (the front and
   /// the medial side; without them the views look across and along the flexion axis);
   /// `names`: the ligaments, in the order `keep` numbers them; `angles_deg`: the angles to draw.
-  KneePictures(const KneeModel& bones, const FlexionOutput& output, KneeAnatomy anatomy,
-               const FlexionAxis& axis, std::vector<std::string> names,
+  KneePictures(const sim::KneeModel& bones, const sim::FlexionOutput& output, KneeAnatomy anatomy,
+               const sim::FlexionAxis& axis, std::vector<std::string> names,
                std::vector<double> angles_deg, std::filesystem::path directory);
 
   /// Keeps ligament `ligament`'s state as written if `angle` is one to draw.
-  void keep(std::size_t ligament, const AngleResult& angle,
+  void keep(std::size_t ligament, const sim::AngleResult& angle,
             vtkSmartPointer<vtkUnstructuredGrid> grid);
 
   /// Renders the kept angles (those every ligament reached); returns the files written.
   std::vector<std::filesystem::path> render() const;
 
 private:
-  const KneeModel& m_bones;
-  const FlexionOutput& m_output;
+  const sim::KneeModel& m_bones;
+  const sim::FlexionOutput& m_output;
   KneeAnatomy m_anatomy;
-  FlexionAxis m_axis;
+  sim::FlexionAxis m_axis;
   std::vector<std::string> m_names;
   std::vector<double> m_angles;
   std::filesystem::path m_directory;
@@ -46,4 +46,4 @@ private:
   std::map<double, double> m_load_factors;
 };
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,9 +1,9 @@
-#include "sim/flexion/render/anatomy_picture.hpp"
+#include "pipeline/render/anatomy_picture.hpp"
 
 #include "common/error.hpp"
-#include "sim/flexion/render/ligament_picture.hpp"
-#include "sim/flexion/render/picture_parts.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/ligament_picture.hpp"
+#include "pipeline/render/picture_parts.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkActor.h>
@@ -19,7 +19,7 @@
 
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace {
 
@@ -114,4 +114,4 @@ void render_anatomy_png(const AnatomyPicture& picture, const std::filesystem::pa
   write_window_png(window, png);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

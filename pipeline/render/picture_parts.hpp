@@ -2,7 +2,7 @@
 /// @brief The parts every knee picture shares: the white scene, the camera check, the bones, the
 /// colour bar and the caption, so that the one-ligament and whole-knee pictures look alike.
 
-#include "sim/flexion/render/ligament_picture.hpp"
+#include "pipeline/render/ligament_picture.hpp"
 
 #include <vtkSmartPointer.h>
 
@@ -15,7 +15,7 @@ class vtkRenderer;
 class vtkScalarBarActor;
 class vtkScalarsToColors;
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 /// Throws InputError unless the camera has a finite focal point, a view direction, an up
 /// direction across it and a positive view height.
@@ -36,4 +36,4 @@ vtkSmartPointer<vtkScalarBarActor> add_scale_bar(vtkRenderer* renderer, vtkScala
 /// The caption at the top left of a picture `height` pixels high (nothing when empty).
 void add_caption(vtkRenderer* renderer, const std::string& caption, int height);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,8 +1,8 @@
-#include "sim/flexion/render/ligament_picture.hpp"
+#include "pipeline/render/ligament_picture.hpp"
 
 #include "common/error.hpp"
-#include "sim/flexion/render/picture_parts.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/picture_parts.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkActor.h>
@@ -35,7 +35,7 @@
 #include <unordered_map>
 #include <utility>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace {
 
@@ -360,4 +360,4 @@ void render_ligament_png(const LigamentPicture& picture, const PictureCamera& ca
   write_window_png(window, png);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -6,7 +6,7 @@
 
 class vtkRenderWindow;
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 /// Makes `window` an off-screen window of width x height pixels. Throws Error if VTK's OpenGL
 /// back-end is not registered (the library was built without vtk_module_autoinit).
@@ -16,4 +16,4 @@ void prepare_offscreen_window(vtkRenderWindow* window, int width, int height);
 /// with VTK's message if rendering fails, InputError if the file cannot be written.
 void write_window_png(vtkRenderWindow* window, const std::filesystem::path& png);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

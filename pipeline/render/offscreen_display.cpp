@@ -1,4 +1,4 @@
-#include "sim/flexion/render/offscreen_display.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 
 #include "common/error.hpp"
 
@@ -26,7 +26,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace {
 
@@ -292,4 +292,4 @@ void OffscreenDisplay::stop_xvfb()
   m_server_pid = 0;
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,7 +1,7 @@
-#include "sim/flexion/knee_pictures.hpp"
+#include "pipeline/render/knee_pictures.hpp"
 
-#include "sim/flexion/render/knee_picture.hpp"
-#include "sim/flexion/render/offscreen_display.hpp"
+#include "pipeline/render/knee_picture.hpp"
+#include "pipeline/render/offscreen_display.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkPoints.h>
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace fs = std::filesystem;
 
@@ -57,9 +57,10 @@ PictureCamera frame(const std::vector<vtkUnstructuredGrid*>& grids, const Eigen:
 
 } // namespace
 
-KneePictures::KneePictures(const KneeModel& bones, const FlexionOutput& output, KneeAnatomy anatomy,
-                           const FlexionAxis& axis, std::vector<std::string> names,
-                           std::vector<double> angles_deg, fs::path directory)
+KneePictures::KneePictures(const sim::KneeModel& bones, const sim::FlexionOutput& output,
+                           KneeAnatomy anatomy, const sim::FlexionAxis& axis,
+                           std::vector<std::string> names, std::vector<double> angles_deg,
+                           fs::path directory)
     : m_bones(bones)
     , m_output(output)
     , m_anatomy(std::move(anatomy))
@@ -70,7 +71,7 @@ KneePictures::KneePictures(const KneeModel& bones, const FlexionOutput& output, 
 {
 }
 
-void KneePictures::keep(std::size_t ligament, const AngleResult& angle,
+void KneePictures::keep(std::size_t ligament, const sim::AngleResult& angle,
                         vtkSmartPointer<vtkUnstructuredGrid> grid)
 {
   for (double wanted : m_angles)
@@ -101,7 +102,8 @@ std::vector<fs::path> KneePictures::render() const
     return {};
 
   // Directions: up the leg, the front, and the lateral side (the medial view looks toward it).
-  const Eigen::Vector3d up = m_anatomy.proximal ? *m_anatomy.proximal : proximal_direction(m_bones);
+  const Eigen::Vector3d up =
+      m_anatomy.proximal ? *m_anatomy.proximal : sim::proximal_direction(m_bones);
   const Eigen::Vector3d along_axis = across(m_axis.direction.normalized(), up);
   const Eigen::Vector3d anterior = m_anatomy.posterior
                                        ? Eigen::Vector3d(-across(*m_anatomy.posterior, up))
@@ -131,8 +133,9 @@ std::vector<fs::path> KneePictures::render() const
     if (m_bones.fibula)
       picture.bones.push_back(m_bones.fibula);
     for (const View& view : views) {
-      picture.caption = "flexion " + angle_label(angle) + " deg, " + view.caption;
-      const fs::path png = m_directory / ("knee_" + view.name + "_" + angle_label(angle) + ".png");
+      picture.caption = "flexion " + sim::angle_label(angle) + " deg, " + view.caption;
+      const fs::path png =
+          m_directory / ("knee_" + view.name + "_" + sim::angle_label(angle) + ".png");
       render_knee_png(picture, view.camera, png);
       written.push_back(png);
     }
@@ -140,4 +143,4 @@ std::vector<fs::path> KneePictures::render() const
   return written;
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

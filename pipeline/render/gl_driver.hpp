@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 /// The paths of the Mesa DRI drivers this process has loaded now (none before the first render,
 /// or where VTK renders without Mesa).
@@ -19,4 +19,4 @@ std::vector<std::string> loaded_gl_drivers();
 /// reload. Each driver is pinned once; later calls only look.
 void keep_gl_drivers_loaded();
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

@@ -1,8 +1,8 @@
-#include "sim/flexion/render/knee_picture.hpp"
+#include "pipeline/render/knee_picture.hpp"
 
 #include "common/error.hpp"
-#include "sim/flexion/render/picture_parts.hpp"
-#include "sim/flexion/render/window_png.hpp"
+#include "pipeline/render/picture_parts.hpp"
+#include "pipeline/render/window_png.hpp"
 
 #include <Eigen/Geometry>
 #include <vtkActor.h>
@@ -28,7 +28,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 namespace {
 
@@ -180,4 +180,4 @@ void render_knee_png(const KneePicture& picture, const PictureCamera& camera,
   write_window_png(window, png);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

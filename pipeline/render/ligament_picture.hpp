@@ -2,7 +2,7 @@
 /// @brief A PNG of a deformed ligament coloured by strain energy density (green low, red high,
 /// as the ligament paper's Figure 4), with its fibers and the bones around it.
 ///
-/// Needs an X display: create an OffscreenDisplay first (sim/flexion/render/offscreen_display.hpp).
+/// Needs an X display: create an OffscreenDisplay first (pipeline/render/offscreen_display.hpp).
 
 #include <Eigen/Core>
 
@@ -14,7 +14,7 @@ class vtkPolyData;
 class vtkRenderer;
 class vtkUnstructuredGrid;
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 /// A parallel projection.
 struct PictureCamera {
@@ -62,4 +62,4 @@ double strain_energy_percentile_mpa(vtkUnstructuredGrid* ligament, double fracti
 void render_ligament_png(const LigamentPicture& picture, const PictureCamera& camera,
                          const std::filesystem::path& png);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

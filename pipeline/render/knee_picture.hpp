@@ -2,9 +2,9 @@
 /// @brief A PNG of a whole knee: every ligament coloured by its fiber strain on one colour scale
 /// (one colour bar), its name beside it, the bones see-through around them.
 ///
-/// Needs an X display: create an OffscreenDisplay first (sim/flexion/render/offscreen_display.hpp).
+/// Needs an X display: create an OffscreenDisplay first (pipeline/render/offscreen_display.hpp).
 
-#include "sim/flexion/render/ligament_picture.hpp"
+#include "pipeline/render/ligament_picture.hpp"
 
 #include <filesystem>
 #include <string>
@@ -13,7 +13,7 @@
 class vtkPolyData;
 class vtkUnstructuredGrid;
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 struct KneePicture {
   /// Deformed ligaments (points in mm) with cell data "fiber_stretch" (|F a|). Not owned.
@@ -39,4 +39,4 @@ double fiber_strain_percentile(const std::vector<vtkUnstructuredGrid*>& ligament
 void render_knee_png(const KneePicture& picture, const PictureCamera& camera,
                      const std::filesystem::path& png);
 
-} // namespace ligsim::sim
+} // namespace ligsim::render

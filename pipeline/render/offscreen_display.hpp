@@ -19,7 +19,7 @@
 #include <string>
 #include <sys/types.h>
 
-namespace ligsim::sim {
+namespace ligsim::render {
 
 class OffscreenDisplay {
 public:
@@ -54,4 +54,4 @@ private:
   std::string m_previous_display; ///< its value
 };
 
-} // namespace ligsim::sim
+} // namespace ligsim::render
