@@ -293,7 +293,7 @@ void run_flexion_stability(const StabilityOptions& options)
     results.push_back(suite.run(name, options.out));
     const sim::FlexionCaseResult& r = results.back();
     log_info(fmt::format("{}: {} ({} iterations, {:.1f} s, max fiber strain {:.1f} %){}", r.name,
-                         r.outcome, r.iterations, r.wall_s, 100.0 * r.max_fiber_strain,
+                         to_string(r.outcome), r.iterations, r.wall_s, 100.0 * r.max_fiber_strain,
                          r.diagnostic.empty() ? "" : ": " + r.diagnostic));
     progress.advance();
   }
@@ -314,7 +314,7 @@ void run_flexion_stability(const StabilityOptions& options)
   summary.write(options.out);
   int failed = 0;
   for (const sim::FlexionCaseResult& r : results)
-    failed += r.outcome == "FAILED" ? 1 : 0;
+    failed += r.outcome == sim::Outcome::failed ? 1 : 0;
   if (failed > 0)
     fail<SolverError>("{} flexion stability cases ended without an answer or a diagnostic, or "
                       "wrote a non-finite value (see stability.md)",
@@ -338,8 +338,8 @@ void run_stability(const StabilityOptions& options)
   for (const std::string& name : names) {
     results.push_back(sim::run_stability_case(name, options.cells));
     const sim::StabilityResult& r = results.back();
-    log_info(fmt::format("{}: {} ({} iterations, {:.2f} s, worst J {:.4f}){}", r.name, r.outcome,
-                         r.iterations, r.wall_s, r.min_j,
+    log_info(fmt::format("{}: {} ({} iterations, {:.2f} s, worst J {:.4f}){}", r.name,
+                         to_string(r.outcome), r.iterations, r.wall_s, r.min_j,
                          r.diagnostic.empty() ? "" : ": " + r.diagnostic));
   }
   summary.add_stage("cases", meter, {{"cases", results.size()}});
@@ -356,7 +356,7 @@ void run_stability(const StabilityOptions& options)
   summary.write(options.out);
   int failed = 0;
   for (const sim::StabilityResult& r : results)
-    failed += r.outcome == "FAILED" ? 1 : 0;
+    failed += r.outcome == sim::Outcome::failed ? 1 : 0;
   if (failed > 0)
     fail<SolverError>("{} stability cases ended without an answer or a diagnostic (see "
                       "stability.md)",

@@ -116,14 +116,14 @@ StabilityResult run_case(const ContactCase& c)
     }
     const bool finite = x.allFinite() && std::isfinite(result.min_j);
     if (result.converged && finite && result.balance_error < 1e-6 && deepest < 0.05)
-      result.outcome = "converged";
+      result.outcome = Outcome::converged;
     else if (!result.converged && finite && !result.diagnostic.empty())
-      result.outcome = "diagnostic";
+      result.outcome = Outcome::diagnostic;
     else
-      result.outcome = "FAILED";
+      result.outcome = Outcome::failed;
   } catch (const Error& e) {
     result.diagnostic = e.what();
-    result.outcome = "diagnostic";
+    result.outcome = Outcome::diagnostic;
   }
   result.wall_s = seconds_since(start);
   return result;

@@ -296,7 +296,7 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
   result.description = definition.info.description;
   result.model = definition.fine ? "fine" : "coarse";
   if (definition.fine && m_fine_dir.empty()) {
-    result.outcome = "skipped";
+    result.outcome = Outcome::skipped;
     result.diagnostic = "no fine model given (--fine-model)";
     result.equilibrium_residual = std::numeric_limits<double>::quiet_NaN();
     return result;
@@ -346,12 +346,12 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
     result.diagnostic = sweep.failure;
     const bool all_reached = sweep.success && sweep.angles.size() == settings.angles_deg.size();
     if (all_reached)
-      result.outcome = quasi_static ? "converged" : "completed";
+      result.outcome = quasi_static ? Outcome::converged : Outcome::completed;
     else
-      result.outcome = names_a_place(sweep.failure) ? "diagnostic" : "FAILED";
+      result.outcome = names_a_place(sweep.failure) ? Outcome::diagnostic : Outcome::failed;
   } catch (const Error& e) {
     result.diagnostic = e.what();
-    result.outcome = names_a_place(result.diagnostic) ? "diagnostic" : "FAILED";
+    result.outcome = names_a_place(result.diagnostic) ? Outcome::diagnostic : Outcome::failed;
   }
   result.wall_s = seconds_since(start);
   result.equilibrium_residual =
@@ -364,7 +364,7 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
   if (fs::exists(directory))
     if (const std::optional<std::string> bad = first_non_finite_value(directory)) {
       result.non_finite = *bad;
-      result.outcome = "FAILED";
+      result.outcome = Outcome::failed;
     }
   return result;
 }
@@ -448,7 +448,7 @@ nlohmann::json flexion_stability_json(const std::vector<FlexionCaseResult>& resu
          {"model", r.model},
          {"tets", r.tets},
          {"model_change", r.model_change},
-         {"outcome", r.outcome},
+         {"outcome", to_string(r.outcome)},
          {"diagnostic", r.diagnostic},
          {"target_angle_deg", r.target_angle_deg},
          {"angles_reached", r.angles.size()},
@@ -469,7 +469,7 @@ namespace {
 
 std::string reached(const FlexionCaseResult& r)
 {
-  if (r.outcome == "skipped")
+  if (r.outcome == Outcome::skipped)
     return "-";
   return fmt::format("{:g} / {:g}", r.angles.empty() ? 0.0 : r.angles.back().angle_deg,
                      r.target_angle_deg);
@@ -495,8 +495,8 @@ std::string flexion_stability_table(const std::vector<FlexionCaseResult>& result
     if (!r.non_finite.empty())
       note += "; NON-FINITE: " + r.non_finite;
     table += fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} | {:.1f} % | {:.3f} | {} | {} |\n",
-                         r.name, r.description, r.tets, r.outcome, reached(r), r.iterations,
-                         r.wall_s, 100.0 * r.max_fiber_strain, r.min_j,
+                         r.name, r.description, r.tets, to_string(r.outcome), reached(r),
+                         r.iterations, r.wall_s, 100.0 * r.max_fiber_strain, r.min_j,
                          residual_text(r.equilibrium_residual), note);
   }
   return table;
@@ -514,7 +514,7 @@ std::string flexion_stability_csv(const std::vector<FlexionCaseResult>& results)
                     "max_fiber_strain,min_j,equilibrium_residual,diagnostic\n";
   for (const FlexionCaseResult& r : results)
     csv += fmt::format("{},{},{},{},{},{},{},{:.3f},{:.6g},{:.6g},{},{}\n", r.name, r.model, r.tets,
-                       r.outcome, r.angles.empty() ? 0.0 : r.angles.back().angle_deg,
+                       to_string(r.outcome), r.angles.empty() ? 0.0 : r.angles.back().angle_deg,
                        r.target_angle_deg, r.iterations, r.wall_s, r.max_fiber_strain, r.min_j,
                        std::isfinite(r.equilibrium_residual)
                            ? fmt::format("{:.3e}", r.equilibrium_residual)

@@ -24,10 +24,10 @@ struct FlexionCaseResult {
   std::string description;
   std::string model; ///< "coarse" or "fine"
   int tets = 0;
-  /// "converged" (static: every angle in equilibrium), "completed" (interactive: every angle
-  /// reached), "diagnostic" (stopped with a message naming where), "skipped" (no fine model
-  /// given) or "FAILED" (a non-finite value written, or a stop without a usable message).
-  std::string outcome;
+  /// converged (static: every angle in equilibrium), completed (interactive: every angle
+  /// reached), diagnostic (stopped with a message naming where), skipped (no fine model given)
+  /// or failed (a non-finite value written, or a stop without a usable message).
+  Outcome outcome = Outcome::failed;
   std::string diagnostic;
   std::vector<AngleResult> angles; ///< the angles reached
   double target_angle_deg = 0.0;

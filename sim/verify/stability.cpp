@@ -137,16 +137,16 @@ StabilityResult run_setup(const CubeSetup& setup)
     }
     const bool finite = x.allFinite() && std::isfinite(result.min_j);
     if (setup.dynamics && result.converged && finite)
-      result.outcome = "completed";
+      result.outcome = Outcome::completed;
     else if (result.converged && finite && result.balance_error < 1e-6)
-      result.outcome = "converged";
+      result.outcome = Outcome::converged;
     else if (!result.converged && finite && !result.diagnostic.empty())
-      result.outcome = "diagnostic";
+      result.outcome = Outcome::diagnostic;
     else
-      result.outcome = "FAILED";
+      result.outcome = Outcome::failed;
   } catch (const Error& e) {
     result.diagnostic = e.what();
-    result.outcome = "diagnostic";
+    result.outcome = Outcome::diagnostic;
   }
   result.wall_s = seconds_since(start);
   return result;
@@ -245,7 +245,7 @@ nlohmann::json stability_json(const std::vector<StabilityResult>& results)
   for (const StabilityResult& r : results)
     cases.push_back({{"name", r.name},
                      {"description", r.description},
-                     {"outcome", r.outcome},
+                     {"outcome", to_string(r.outcome)},
                      {"converged", r.converged},
                      {"diagnostic", r.diagnostic},
                      {"iterations", r.iterations},
@@ -263,7 +263,7 @@ std::string stability_table(const std::vector<StabilityResult>& results)
                       "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n";
   for (const StabilityResult& r : results)
     table += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.4f} | {:.4f} | {:.1e} | {} |\n", r.name,
-                         r.description, r.outcome, r.iterations, r.wall_s, r.min_j,
+                         r.description, to_string(r.outcome), r.iterations, r.wall_s, r.min_j,
                          r.max_displacement_mm, r.balance_error,
                          r.diagnostic.empty() ? "-" : r.diagnostic);
   return table;

@@ -4,6 +4,8 @@
 /// element, a sliver, a NaN node. Each must converge to a finite, balanced answer or stop with
 /// a diagnostic naming the element or node and the cause.
 
+#include "sim/verify/outcome.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -19,10 +21,9 @@ struct StabilityCase {
 struct StabilityResult {
   std::string name;
   std::string description;
-  /// "converged" (static, in equilibrium with balanced reactions), "completed" (dynamics ran
-  /// all its frames), "diagnostic" (stopped with a clear message) or "FAILED" (anything else:
-  /// a wrong, non-finite or unexplained outcome).
-  std::string outcome;
+  /// converged (static, in equilibrium with balanced reactions), completed (dynamics ran all
+  /// its frames), diagnostic (stopped with a clear message) or failed (anything else).
+  Outcome outcome = Outcome::failed;
   bool converged = false;
   std::string diagnostic;
   int iterations = 0; ///< Newton iterations, or frames in dynamics

@@ -21,12 +21,12 @@ TEST_P(ContactStability, ConvergesOrStopsWithADiagnostic)
   const std::optional<StabilityResult> result = run_contact_stability_case(GetParam());
   ASSERT_TRUE(result.has_value());
   if (result->name == "contact_node_deep_inside_bone") {
-    EXPECT_EQ(result->outcome, "diagnostic");
+    EXPECT_EQ(result->outcome, ligsim::sim::Outcome::diagnostic);
     EXPECT_NE(result->diagnostic.find("contact obstacle"), std::string::npos) << result->diagnostic;
   } else {
     // "converged" includes: reactions and contact force balance to 1e-6, no node deeper than
     // 0.05 mm inside the exact sphere.
-    EXPECT_EQ(result->outcome, "converged") << result->diagnostic;
+    EXPECT_EQ(result->outcome, ligsim::sim::Outcome::converged) << result->diagnostic;
     EXPECT_LT(result->balance_error, 1e-6);
     EXPECT_GT(result->min_j, 0.0);
   }

@@ -52,18 +52,18 @@ TEST_P(FlexionStability, ConvergesInEquilibriumOrStopsWithADiagnostic)
   FlexionStabilitySuite suite = small_suite();
   const FlexionCaseResult result = suite.run(GetParam(), output_folder(GetParam()));
   EXPECT_TRUE(result.non_finite.empty()) << result.non_finite;
-  EXPECT_NE(result.outcome, "FAILED") << result.diagnostic;
-  if (result.outcome == "diagnostic")
+  EXPECT_NE(result.outcome, ligsim::sim::Outcome::failed) << result.diagnostic;
+  if (result.outcome == ligsim::sim::Outcome::diagnostic)
     return; // names the angle and the step, the element or node (checked by the suite)
   ASSERT_FALSE(result.angles.empty());
   EXPECT_EQ(result.angles.back().angle_deg, 140.0);
   EXPECT_GT(result.min_j, 0.0);
   EXPECT_TRUE(std::isfinite(result.max_fiber_strain));
-  if (result.outcome == "converged") {
+  if (result.outcome == ligsim::sim::Outcome::converged) {
     // Recomputed from the final states, apart from the solver's own figure.
     EXPECT_LT(result.equilibrium_residual, 1e-6);
   } else {
-    EXPECT_EQ(result.outcome, "completed");
+    EXPECT_EQ(result.outcome, ligsim::sim::Outcome::completed);
   }
 }
 
@@ -77,8 +77,8 @@ TEST(FlexionStability, ReversedFibersChangeNothing)
   FlexionStabilitySuite suite = small_suite();
   const FlexionCaseResult plain = suite.run("coarse_140", output_folder("plain"));
   const FlexionCaseResult reversed = suite.run("fibers_reversed", output_folder("reversed"));
-  ASSERT_EQ(plain.outcome, "converged") << plain.diagnostic;
-  ASSERT_EQ(reversed.outcome, "converged") << reversed.diagnostic;
+  ASSERT_EQ(plain.outcome, ligsim::sim::Outcome::converged) << plain.diagnostic;
+  ASSERT_EQ(reversed.outcome, ligsim::sim::Outcome::converged) << reversed.diagnostic;
   ASSERT_EQ(plain.angles.size(), reversed.angles.size());
   for (std::size_t i = 0; i < plain.angles.size(); ++i)
     EXPECT_NEAR(reversed.angles[i].strain_energy_mj, plain.angles[i].strain_energy_mj,
@@ -89,7 +89,7 @@ TEST(FlexionStability, FineCasesAreSkippedWithoutAFineModel)
 {
   FlexionStabilitySuite suite = small_suite();
   const FlexionCaseResult result = suite.run("fine_140", output_folder("fine"));
-  EXPECT_EQ(result.outcome, "skipped");
+  EXPECT_EQ(result.outcome, ligsim::sim::Outcome::skipped);
   EXPECT_THROW(suite.run("no_such_case", output_folder("none")), ligsim::InputError);
 }
 

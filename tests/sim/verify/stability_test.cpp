@@ -20,21 +20,21 @@ class Stability : public ::testing::TestWithParam<std::string> {};
 TEST_P(Stability, ConvergesOrStopsWithADiagnostic)
 {
   const StabilityResult result = run_stability_case(GetParam(), 4);
-  EXPECT_NE(result.outcome, "FAILED") << result.diagnostic;
+  EXPECT_NE(result.outcome, ligsim::sim::Outcome::failed) << result.diagnostic;
   const std::string& name = result.name;
   if (name == "inverted_element") {
-    EXPECT_EQ(result.outcome, "diagnostic");
+    EXPECT_EQ(result.outcome, ligsim::sim::Outcome::diagnostic);
     EXPECT_NE(result.diagnostic.find("element 0"), std::string::npos) << result.diagnostic;
     EXPECT_NE(result.diagnostic.find("inverted"), std::string::npos) << result.diagnostic;
   } else if (name == "nan_node") {
-    EXPECT_EQ(result.outcome, "diagnostic");
+    EXPECT_EQ(result.outcome, ligsim::sim::Outcome::diagnostic);
     EXPECT_NE(result.diagnostic.find("node 5"), std::string::npos) << result.diagnostic;
   } else if (name.rfind("dynamic", 0) == 0) {
-    EXPECT_EQ(result.outcome, "completed") << result.diagnostic;
+    EXPECT_EQ(result.outcome, ligsim::sim::Outcome::completed) << result.diagnostic;
     EXPECT_GT(result.min_j, 0.5);
   } else {
     // The straight equilibrium exists at every load (FEBio finds it): converge, balanced.
-    EXPECT_EQ(result.outcome, "converged") << result.diagnostic;
+    EXPECT_EQ(result.outcome, ligsim::sim::Outcome::converged) << result.diagnostic;
     EXPECT_LT(result.balance_error, 1e-6);
     EXPECT_GT(result.min_j, 0.0);
     if (name == "compression_0.20") { // past the sway bifurcation: converged, said unstable
@@ -54,8 +54,8 @@ TEST(Stability, ArcLengthAndLoadControlReachTheSameCompressedEquilibrium)
 {
   const StabilityResult load_control = run_stability_case("compression_0.20", 4);
   const StabilityResult arc_length = run_stability_case("compression_0.20_arc_length", 4);
-  ASSERT_EQ(load_control.outcome, "converged");
-  ASSERT_EQ(arc_length.outcome, "converged");
+  ASSERT_EQ(load_control.outcome, ligsim::sim::Outcome::converged);
+  ASSERT_EQ(arc_length.outcome, ligsim::sim::Outcome::converged);
   EXPECT_NEAR(arc_length.max_displacement_mm, load_control.max_displacement_mm, 1e-9);
   EXPECT_NEAR(arc_length.min_j, load_control.min_j, 1e-9);
 }
