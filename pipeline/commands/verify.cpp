@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -265,6 +266,17 @@ struct StabilityOptions {
 };
 
 /// `--suite flexion`: the knee model's extreme cases (sim/verify/flexion_stability).
+/// SolverError "<count> <what> (see stability.md)" when any of `results` failed.
+template <class Result>
+void fail_on_failed_cases(const std::vector<Result>& results, const std::string& what)
+{
+  const auto failed = std::count_if(results.begin(), results.end(), [](const Result& r) {
+    return r.outcome == sim::Outcome::failed;
+  });
+  if (failed > 0)
+    fail<SolverError>("{} {} (see stability.md)", failed, what);
+}
+
 void run_flexion_stability(const StabilityOptions& options)
 {
   RunSummary summary("verify stability --suite flexion");
@@ -312,13 +324,8 @@ void run_flexion_stability(const StabilityOptions& options)
           sim::flexion_stability_table(results));
   summary.results() = json;
   summary.write(options.out);
-  int failed = 0;
-  for (const sim::FlexionCaseResult& r : results)
-    failed += r.outcome == sim::Outcome::failed ? 1 : 0;
-  if (failed > 0)
-    fail<SolverError>("{} flexion stability cases ended without an answer or a diagnostic, or "
-                      "wrote a non-finite value (see stability.md)",
-                      failed);
+  fail_on_failed_cases(results, "flexion stability cases ended without an answer or a "
+                                "diagnostic, or wrote a non-finite value");
 }
 
 void run_stability(const StabilityOptions& options)
@@ -354,13 +361,7 @@ void run_stability(const StabilityOptions& options)
                             sim::stability_table(results));
   summary.results() = json;
   summary.write(options.out);
-  int failed = 0;
-  for (const sim::StabilityResult& r : results)
-    failed += r.outcome == sim::Outcome::failed ? 1 : 0;
-  if (failed > 0)
-    fail<SolverError>("{} stability cases ended without an answer or a diagnostic (see "
-                      "stability.md)",
-                      failed);
+  fail_on_failed_cases(results, "stability cases ended without an answer or a diagnostic");
 }
 
 struct FebioOptions {
