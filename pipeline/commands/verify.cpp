@@ -33,6 +33,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// Says where verify.json went; SolverError "<n> of <m> <what> did not converge" if any did not.
+void report_cube_runs(const std::vector<sim::CubeCaseResult>& results, const fs::path& out,
+                      const std::string& what)
+{
+  const auto failed = std::count_if(results.begin(), results.end(),
+                                    [](const sim::CubeCaseResult& r) { return !r.converged; });
+  log_info(fmt::format("wrote {} and verify.md", (out / "verify.json").string()));
+  if (failed > 0)
+    fail<SolverError>("{} of {} {} did not converge (see verify.md)", failed, results.size(), what);
+}
+
 struct CubeOptions {
   fs::path reference = "data/febio-cube";
   fs::path out;
@@ -172,13 +183,7 @@ void run_compression(const CubeOptions& options, const sim::FebioReference& refe
                             sim::cube_equilibrium_table(results));
   summary.results() = json;
   summary.write(options.out);
-  int failed = 0;
-  for (const sim::CubeCaseResult& r : results)
-    failed += r.converged ? 0 : 1;
-  log_info(fmt::format("wrote {} and verify.md", (options.out / "verify.json").string()));
-  if (failed > 0)
-    fail<SolverError>("{} of {} compression runs did not converge (see verify.md)", failed,
-                      results.size());
+  report_cube_runs(results, options.out, "compression runs");
 }
 
 void run_cube(const CubeOptions& options)
@@ -245,13 +250,7 @@ void run_cube(const CubeOptions& options)
   write_text_atomically(options.out / "verify.md", table);
   summary.results() = json;
   summary.write(options.out);
-  int failed = 0;
-  for (const sim::CubeCaseResult& r : results)
-    failed += r.converged ? 0 : 1;
-  log_info(fmt::format("wrote {} and verify.md", (options.out / "verify.json").string()));
-  if (failed > 0)
-    fail<SolverError>("{} of {} cube runs did not converge (see verify.md)", failed,
-                      results.size());
+  report_cube_runs(results, options.out, "cube runs");
 }
 
 struct StabilityOptions {

@@ -114,13 +114,7 @@ StabilityResult run_case(const ContactCase& c)
                       "{} cut-backs)",
                       force.norm(), deepest, run.cutbacks);
     }
-    const bool finite = x.allFinite() && std::isfinite(result.min_j);
-    if (result.converged && finite && result.balance_error < 1e-6 && deepest < 0.05)
-      result.outcome = Outcome::converged;
-    else if (!result.converged && finite && !result.diagnostic.empty())
-      result.outcome = Outcome::diagnostic;
-    else
-      result.outcome = Outcome::failed;
+    result.outcome = static_outcome(result, x, deepest < 0.05);
   } catch (const Error& e) {
     result.diagnostic = e.what();
     result.outcome = Outcome::diagnostic;

@@ -135,15 +135,10 @@ StabilityResult run_setup(const CubeSetup& setup)
       const Eigen::Vector3d reaction = reaction_forces(conditions, residual)[0];
       result.balance_error = (reaction + setup.total_load_n).norm() / setup.total_load_n.norm();
     }
-    const bool finite = x.allFinite() && std::isfinite(result.min_j);
-    if (setup.dynamics && result.converged && finite)
+    if (setup.dynamics && result.converged && x.allFinite() && std::isfinite(result.min_j))
       result.outcome = Outcome::completed;
-    else if (result.converged && finite && result.balance_error < 1e-6)
-      result.outcome = Outcome::converged;
-    else if (!result.converged && finite && !result.diagnostic.empty())
-      result.outcome = Outcome::diagnostic;
     else
-      result.outcome = Outcome::failed;
+      result.outcome = static_outcome(result, x);
   } catch (const Error& e) {
     result.diagnostic = e.what();
     result.outcome = Outcome::diagnostic;
@@ -211,6 +206,16 @@ std::vector<CaseDefinition> definitions()
 }
 
 } // namespace
+
+Outcome static_outcome(const StabilityResult& result, const Eigen::VectorXd& x, bool check)
+{
+  const bool finite = x.allFinite() && std::isfinite(result.min_j);
+  if (result.converged && finite && result.balance_error < 1e-6 && check)
+    return Outcome::converged;
+  if (!result.converged && finite && !result.diagnostic.empty())
+    return Outcome::diagnostic;
+  return Outcome::failed;
+}
 
 std::vector<StabilityCase> stability_cases()
 {

@@ -6,6 +6,7 @@
 
 #include "sim/verify/outcome.hpp"
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -33,6 +34,11 @@ struct StabilityResult {
   double balance_error = 0.0;
   double max_displacement_mm = 0.0;
 };
+
+/// How a static case ended at `x`: converged (a finite answer with balanced reactions, to 1e-6,
+/// that also passes the case's own `check`), diagnostic (stopped, finite, with a message) or
+/// failed (anything else).
+Outcome static_outcome(const StabilityResult& result, const Eigen::VectorXd& x, bool check = true);
 
 /// The suite, in report order.
 std::vector<StabilityCase> stability_cases();
