@@ -8,6 +8,7 @@
 #include "common/run_summary.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/commands/anatomy_outputs.hpp"
+#include "pipeline/reports/knee_reports.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/knee_build.hpp"
 #include "pipeline/stage_graph/knee_from_labels.hpp"
@@ -238,7 +239,7 @@ nlohmann::json report_thin_ligaments(const pipeline::KneeConfig& knee, const fs:
                                 io::points_of(read_vtp(dir / pipeline::files::centerline)));
     if (!thickness)
       continue;
-    json[ligament.name] = sim::thickness_json(*thickness, ligament.name);
+    json[ligament.name] = reports::thickness_json(*thickness, ligament.name);
     if (const auto finding = sim::thin_ligament_finding(ligament.name, *thickness))
       log_info(fmt::format("warning: {}", *finding));
   }

@@ -9,6 +9,7 @@
 #include "pipeline/render/flexion_pictures.hpp"
 #include "pipeline/render/knee_pictures.hpp"
 #include "pipeline/render/offscreen_display.hpp"
+#include "pipeline/reports/knee_reports.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -154,8 +155,8 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
   nlohmann::json json = {{"angles", entries},
                          {"setup", sweep.setup},
                          {"unrelaxed_prestretch_energy_mj", result.unrelaxed_energy_mj},
-                         {"initial_overlap", result.overlap.to_json()},
-                         {"footprints", sim::footprints_json(sweep.footprints, ligament.name)},
+                         {"initial_overlap", reports::to_json(result.overlap)},
+                         {"footprints", reports::footprints_json(sweep.footprints, ligament.name)},
                          {"plausibility",
                           {{"ligament", ligament.name},
                            {"failure_strain", ligament.failure_strain},
@@ -165,7 +166,7 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
                          {"in_situ_strain", sweep.settings.in_situ_strain},
                          {"success", result.success}};
   if (sweep.thickness)
-    json["cross_section"] = sim::thickness_json(*sweep.thickness, ligament.name);
+    json["cross_section"] = reports::thickness_json(*sweep.thickness, ligament.name);
   if (sweep.settings.mode == sim::FlexionMode::interactive)
     json["frames_per_second"] = result.frames_per_second;
   if (!result.success)
@@ -271,7 +272,7 @@ void run_flexion(const FlexionJobOptions& options)
   if (free) {
     sim::write_kinematics_csv(free->found, motion.jcs, options.out / "kinematics.csv");
     sim::write_kinematics_plot(free->found, options.out / "kinematics.svg");
-    summary.results()["free"] = sim::to_json(free->found, motion.jcs);
+    summary.results()["free"] = reports::to_json(free->found, motion.jcs);
     if (free->seat) {
       const sim::ArticularContact::Seat& seat = *free->seat;
       const auto finite = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nullptr; };
@@ -344,7 +345,7 @@ void run_flexion(const FlexionJobOptions& options)
   for (const sim::LigamentSweep& sweep : sweeps)
     results["ligaments"][sweep.name] = ligament_results(sweep);
   if (ligaments.size() > 1)
-    results["pairs"] = sim::pairs_over_sweep(ligaments, states, options.out);
+    results["pairs"] = reports::to_json(sim::pairs_over_sweep(ligaments, states, options.out));
   else { // a one-ligament model: its results at the top, and its setup, as before knees
     results.update(results["ligaments"][sweeps.front().name]);
     summary.stage("setup").update(sweeps.front().setup);

@@ -21,18 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Where a centre on the tibia lies from the JCS origin: anterior and medial, mm.
-std::pair<double, double> on_tibia(const Eigen::Vector3d& point, const JointCoordinateSystem& jcs)
-{
-  if (!point.allFinite())
-    return {NAN, NAN};
-  const Eigen::Matrix3d axes = joint_axes(jcs);
-  const double side = jcs.side >= 0 ? 1.0 : -1.0;
-  const Eigen::Vector3d d = point - jcs.origin_mm;
-  // e1 points laterally in a right knee (side +1), medially in a left one.
-  return {d.dot(axes.col(1)), -side * d.dot(axes.col(0))};
-}
-
 } // namespace
 
 bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments)
@@ -125,6 +113,17 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
   return free;
 }
 
+std::pair<double, double> on_tibia(const Eigen::Vector3d& point, const JointCoordinateSystem& jcs)
+{
+  if (!point.allFinite())
+    return {NAN, NAN};
+  const Eigen::Matrix3d axes = joint_axes(jcs);
+  const double side = jcs.side >= 0 ? 1.0 : -1.0;
+  const Eigen::Vector3d d = point - jcs.origin_mm;
+  // e1 points laterally in a right knee (side +1), medially in a left one.
+  return {d.dot(axes.col(1)), -side * d.dot(axes.col(0))};
+}
+
 void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSystem& jcs,
                           const fs::path& file)
 {
@@ -174,37 +173,4 @@ void write_kinematics_plot(const FreeFemurResult& found, const fs::path& file)
   plot.series = {rotation, walker_rotation, varus, walker_varus};
   write_text_atomically(file, svg_line_plot(plot));
 }
-
-nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs)
-{
-  nlohmann::json angles = nlohmann::json::array();
-  for (const FreeAngle& at : found.angles) {
-    const auto [ma, mm] = on_tibia(at.articular.medial_centre_mm, jcs);
-    const auto [la, lm] = on_tibia(at.articular.lateral_centre_mm, jcs);
-    nlohmann::json forces = nlohmann::json::array();
-    for (const Eigen::Vector3d& f : at.ligament_femur_forces_n)
-      forces.push_back(json_vector3(f));
-    angles.push_back({{"angle_deg", at.angle_deg},
-                      {"converged", at.converged},
-                      {"iterations", at.iterations},
-                      {"varus_deg", at.pose.varus_deg},
-                      {"internal_rotation_deg", at.pose.internal_rotation_deg},
-                      {"anterior_mm", at.pose.anterior_mm},
-                      {"medial_mm", -at.pose.lateral_mm},
-                      {"proximal_mm", at.pose.proximal_mm},
-                      {"medial_contact_force_n", at.articular.medial_force_n.norm()},
-                      {"lateral_contact_force_n", at.articular.lateral_force_n.norm()},
-                      {"medial_contact_mm", {{"anterior", ma}, {"medial", mm}}},
-                      {"lateral_contact_mm", {{"anterior", la}, {"medial", lm}}},
-                      {"contact_area_mm2", at.articular.area_mm2},
-                      {"max_contact_pressure_mpa", at.articular.max_pressure_mpa},
-                      {"residual_force_n", at.residual_force_n},
-                      {"residual_moment_nmm", at.residual_moment_nmm},
-                      {"force_scale_n", at.force_scale_n},
-                      {"ligament_femur_forces_n", forces},
-                      {"wall_s", at.wall_s}});
-  }
-  return {{"success", found.success}, {"failure", found.failure}, {"angles", angles}};
-}
-
 } // namespace ligsim::sim

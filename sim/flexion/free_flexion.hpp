@@ -9,10 +9,9 @@
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace ligsim::sim {
@@ -59,6 +58,8 @@ void write_kinematics_csv(const FreeFemurResult& found, const JointCoordinateSys
 /// cadaver knee's mean path (Walker et al., J Biomech 1988;21:965: sim/kinematics/knee_path.hpp).
 void write_kinematics_plot(const FreeFemurResult& found, const std::filesystem::path& file);
 
-nlohmann::json to_json(const FreeFemurResult& found, const JointCoordinateSystem& jcs);
+/// Where a contact centre on the tibia lies from the JCS origin: anterior and medial, mm (NaN
+/// for a centre that is not finite).
+std::pair<double, double> on_tibia(const Eigen::Vector3d& point, const JointCoordinateSystem& jcs);
 
 } // namespace ligsim::sim

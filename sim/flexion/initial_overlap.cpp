@@ -9,16 +9,6 @@ namespace ligsim::sim {
 
 namespace {
 
-nlohmann::json gaps_json(const std::vector<KneeContact::Gaps>& gaps)
-{
-  nlohmann::json json = nlohmann::json::object();
-  for (const KneeContact::Gaps& g : gaps)
-    json[g.bone] = {{"min_gap_mm", g.min_gap_mm},
-                    {"nodes_inside", g.inside},
-                    {"nodes_within_d_hat", g.within_d_hat}};
-  return json;
-}
-
 /// The same node sets, each held where it is.
 BoundaryConditions held_in_place(const BoundaryConditions& conditions)
 {
@@ -33,25 +23,6 @@ BoundaryConditions held_in_place(const BoundaryConditions& conditions)
 }
 
 } // namespace
-
-nlohmann::json OverlapReport::to_json() const
-{
-  nlohmann::json json = {{"pushed", pushed}, {"before", gaps_json(before)}};
-  if (pushed)
-    json.update({{"after", gaps_json(after)},
-                 {"start_offsets_mm", start_offsets_mm},
-                 {"max_node_move_mm", max_node_move_mm},
-                 {"mean_move_of_nodes_inside_mm", mean_surface_move_mm},
-                 {"newton_iterations", newton_iterations},
-                 {"method", reshaped ? "bones held at rest and grown from shrunk back to their "
-                                       "surfaces while the ligament without in-situ strain "
-                                       "settles (contact barrier); the pushed shape is the "
-                                       "stress-free rest shape"
-                                     : "bones held at rest and grown from shrunk back to their "
-                                       "surfaces while the ligament settles (contact barrier)"},
-                 {"reshaped", reshaped}});
-  return json;
-}
 
 OverlapReport resolve_initial_overlap(const HyperelasticBody& body,
                                       const BoundaryConditions& conditions,

@@ -12,7 +12,6 @@
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -28,8 +27,6 @@ struct OverlapReport {
   double max_node_move_mm = 0.0;        ///< largest displacement of a node by the push
   double mean_surface_move_mm = 0.0;    ///< mean displacement of the nodes that started inside
   int newton_iterations = 0;
-
-  nlohmann::json to_json() const;
 };
 
 /// Resolves the overlap of the state `x` (flat positions, mm) with the bones of `contact`, in

@@ -96,20 +96,12 @@ std::vector<LigamentPair> measure_pairs(const std::vector<LigamentState>& ligame
   return pairs;
 }
 
-nlohmann::json to_json(const LigamentPair& pair)
+std::vector<PairAtAngle>
+pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
+                 const std::map<double, std::vector<Eigen::VectorXd>>& states,
+                 const std::filesystem::path& out)
 {
-  return {{"first", pair.first},
-          {"second", pair.second},
-          {"closest_mm", pair.closest_mm},
-          {"nodes_inside", pair.nodes_inside},
-          {"deepest_mm", pair.deepest_mm}};
-}
-
-nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
-                                const std::map<double, std::vector<Eigen::VectorXd>>& states,
-                                const std::filesystem::path& out)
-{
-  nlohmann::json json = nlohmann::json::array();
+  std::vector<PairAtAngle> found;
   std::string csv = "angle_deg,first,second,closest_mm,nodes_inside,deepest_mm\n";
   for (const auto& [angle, x] : states) {
     if (x.size() != ligaments.size() ||
@@ -119,9 +111,7 @@ nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
     for (std::size_t l = 0; l < ligaments.size(); ++l)
       at_angle.push_back({ligaments[l].name, &ligaments[l].model.mesh, &x[l]});
     for (const LigamentPair& pair : measure_pairs(at_angle)) {
-      nlohmann::json entry = to_json(pair);
-      entry["angle_deg"] = angle;
-      json.push_back(entry);
+      found.push_back({angle, pair});
       csv += fmt::format("{:g},{},{},{:.6g},{},{:.6g}\n", angle, pair.first, pair.second,
                          pair.closest_mm, pair.nodes_inside, pair.deepest_mm);
       if (pair.nodes_inside > 0)
@@ -133,7 +123,7 @@ nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
     }
   }
   write_text_atomically(out / "pairs.csv", csv);
-  return json;
+  return found;
 }
 
 } // namespace ligsim::sim

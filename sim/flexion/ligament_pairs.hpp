@@ -9,7 +9,6 @@
 #include "sim/flexion/knee_model.hpp"
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -36,13 +35,18 @@ struct LigamentState {
 /// Every pair of `ligaments`, in order (0-1, 0-2, ..., 1-2, ...).
 std::vector<LigamentPair> measure_pairs(const std::vector<LigamentState>& ligaments);
 
-nlohmann::json to_json(const LigamentPair& pair);
+/// One pair at one angle of a sweep.
+struct PairAtAngle {
+  double angle_deg = 0.0;
+  LigamentPair pair;
+};
 
 /// Per angle that every ligament reached (`states`: per angle, per ligament of `ligaments`, the
 /// positions; an empty vector where one did not reach it): every pair, into `<out>/pairs.csv`
-/// and the returned JSON, with a warning on stderr where two interpenetrate.
-nlohmann::json pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
-                                const std::map<double, std::vector<Eigen::VectorXd>>& states,
-                                const std::filesystem::path& out);
+/// and the returned list, with a warning on stderr where two interpenetrate.
+std::vector<PairAtAngle>
+pairs_over_sweep(const std::vector<LigamentModel>& ligaments,
+                 const std::map<double, std::vector<Eigen::VectorXd>>& states,
+                 const std::filesystem::path& out);
 
 } // namespace ligsim::sim

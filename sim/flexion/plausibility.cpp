@@ -115,39 +115,11 @@ std::optional<std::string> thin_ligament_finding(const std::string& ligament,
                      published->mm2, published->source);
 }
 
-nlohmann::json thickness_json(const LigamentThickness& thickness, const std::string& ligament)
-{
-  nlohmann::json json = {{"volume_mm3", thickness.volume_mm3},
-                         {"centerline_mm", thickness.centerline_mm},
-                         {"mean_cross_section_mm2", thickness.mean_cross_section_mm2}};
-  if (const auto published = published_cross_section(ligament))
-    json["published_cross_section_mm2"] = {{"mm2", published->mm2}, {"source", published->source}};
-  if (const auto finding = thin_ligament_finding(ligament, thickness))
-    json["finding"] = *finding;
-  return json;
-}
-
 std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axis)
 {
   const ContactSurface boundary = boundary_surface(model.mesh);
   return {footprint_of(model.mesh, boundary, model.femur_nodes, "femur", axis),
           footprint_of(model.mesh, boundary, model.tibia_nodes, model.distal_bone, axis)};
-}
-
-nlohmann::json footprints_json(const std::vector<Footprint>& prints, const std::string& ligament)
-{
-  nlohmann::json json = nlohmann::json::object();
-  for (const Footprint& print : prints) {
-    nlohmann::json& entry = json[print.bone];
-    entry = {{"nodes", print.nodes},
-             {"area_mm2", print.area_mm2},
-             {"mean_distance_to_flexion_axis_mm", print.mean_axis_distance_mm},
-             {"max_distance_to_flexion_axis_mm", print.max_axis_distance_mm}};
-    if (const auto published = published_footprint_area(ligament, print.bone))
-      entry["published_area_mm2"] = {
-          {"mean", published->mean_mm2}, {"sd", published->sd_mm2}, {"source", published->source}};
-  }
-  return json;
 }
 
 std::vector<std::string> plausibility_warnings(const AngleResult& angle,

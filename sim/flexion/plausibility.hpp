@@ -9,8 +9,6 @@
 #include "sim/flexion/initial_overlap.hpp"
 #include "sim/flexion/knee_model.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,8 +38,6 @@ std::optional<PublishedArea> published_footprint_area(const std::string& ligamen
 /// The femoral and tibial footprints of `model` about `axis`.
 std::vector<Footprint> footprints(const KneeModel& model, const FlexionAxis& axis);
 
-nlohmann::json footprints_json(const std::vector<Footprint>& prints, const std::string& ligament);
-
 /// A published mid-substance cross-section (mm^2) and its source; none for a ligament without
 /// one here.
 struct PublishedCrossSection {
@@ -63,8 +59,6 @@ std::optional<LigamentThickness> ligament_thickness(const TetMesh& mesh, const P
 /// stiffness and forces to be a real one's: one line that says so, or none.
 std::optional<std::string> thin_ligament_finding(const std::string& ligament,
                                                  const LigamentThickness& thickness);
-
-nlohmann::json thickness_json(const LigamentThickness& thickness, const std::string& ligament);
 
 /// What the sweep knows that may explain an implausible angle.
 struct PlausibilityContext {

@@ -407,7 +407,6 @@ TEST(Plausibility, ALigamentBuiltAThirdAsThickAsPublishedIsSaidToBeTooThin)
   ASSERT_TRUE(thin);
   EXPECT_NE(thin->find("16.1 times under the published 38.7 mm^2"), std::string::npos) << *thin;
   EXPECT_FALSE(thin_ligament_finding("MCL", thread)) << "no published figure, no finding";
-  EXPECT_EQ(thickness_json(thread, "ACL").at("finding").get<std::string>(), *thin);
 
   // The finding is given as a cause of a strain past failure.
   PlausibilityContext context = bar_context(FlexionSettings{});

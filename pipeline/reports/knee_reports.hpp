@@ -1,0 +1,38 @@
+#pragma once
+/// @brief summary.json's entries for what a knee flexion reports besides its angles: the push
+/// out of the bones before the sweep, the free knee's path, the ligaments' pairs, their
+/// footprints and cross-sections. The results are typed in sim/; JSON is written here, at the
+/// edge.
+
+#include "sim/flexion/free_flexion.hpp"
+#include "sim/flexion/initial_overlap.hpp"
+#include "sim/flexion/ligament_pairs.hpp"
+#include "sim/flexion/plausibility.hpp"
+#include "sim/kinematics/joint_coordinates.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace ligsim::reports {
+
+/// The gaps to each bone before the push and, when pushed, after it and how.
+nlohmann::json to_json(const sim::OverlapReport& report);
+
+/// The free knee's path: per angle the tibia's Grood & Suntay coordinates, the articular contact
+/// (forces, centres on the tibia in `jcs`, area, peak pressure) and the femur's residual.
+nlohmann::json to_json(const sim::FreeFemurResult& found, const sim::JointCoordinateSystem& jcs);
+
+/// Every pair at every angle, with its angle.
+nlohmann::json to_json(const std::vector<sim::PairAtAngle>& pairs);
+
+/// The femoral and distal footprints of `ligament`, with the published areas where known.
+nlohmann::json footprints_json(const std::vector<sim::Footprint>& prints,
+                               const std::string& ligament);
+
+/// How thick `ligament` was built, beside its published cross-section, and the finding when it
+/// is too thin.
+nlohmann::json thickness_json(const sim::LigamentThickness& thickness, const std::string& ligament);
+
+} // namespace ligsim::reports
