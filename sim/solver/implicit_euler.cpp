@@ -29,6 +29,7 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
     , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
     , m_external(m_dofs.external_forces(conditions))
     , m_linear(body, m_dofs, settings.linear_solver, settings.pcg)
+    , m_engine(body, m_dofs, m_external, m_linear, nullptr, settings.projection)
 {
   if (!(settings.time_step_s > 0.0) || !std::isfinite(settings.time_step_s))
     fail("dynamics: time_step_s must be positive, got {}", settings.time_step_s);
@@ -55,165 +56,83 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
       m_mass.segment<3>(3 * T(e, i)).array() += density * body.shape(e).V0 / 4.0;
   m_free_mass = m_dofs.gather(m_mass);
 
-  const Points& V = body.mesh().V;
-  const double size = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
-  m_force_floor = 1e-12 * body.material().parameters().mu_mpa * size * size;
+  if (settings.stiffness_damping_s > 0.0) {
+    m_damping_stiffness = std::make_unique<StiffnessMatrix>(T, m_dofs);
+    m_damping.K_s = &m_damping_stiffness->matrix();
+  }
+}
+
+void ImplicitEuler::set_extra_potential(const ExtraPotential* potential)
+{
+  m_extra = potential;
+  m_engine.set_extra_potential(potential);
 }
 
 bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t,
                          FrameReport& report)
 {
-  const double alpha = m_settings.mass_damping_per_s;
-  const double beta = m_settings.stiffness_damping_s;
-
-  // Prescribed DOFs jump to their targets; the solve sees them as already moved.
+  // Prescribed DOFs jump to their targets; the step starts there with the free nodes unmoved.
   m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
   if (m_extra)
     m_extra->make_admissible(x, t);
 
-  // With A = M (1 + h alpha) + (h^2 + h beta) K, the first solve linearises at the step's start
-  // (free nodes not yet moved by h v):
-  //   A dv = h f - h (h + beta) K v - h alpha M v = h f - (A v - M v);
-  // later ones are Newton on the same equation at x = x_start + h v:
-  //   A dv = h f - M (1 + h alpha) v + M v_start - h beta K v.
-  const Eigen::VectorXd mass_term = (1.0 + h * alpha) * m_free_mass;
-  const double stiffness_scale = h * h + h * beta;
-  bool project = m_settings.projection == PsdProjection::always;
-  const Eigen::VectorXd start_velocity = m_dofs.gather(v);
-  Eigen::VectorXd velocity = start_velocity;
-  m_step_met = false;
-  for (int iteration = 0; iteration < m_settings.max_iterations; ++iteration) {
-    // The contact's exact Hessian blocks in Newton's iterations (their projection drops the
-    // bone's curvature and makes Newton linear on sliding nodes), projected in the first solve
-    // and wherever the matrix is indefinite with them.
-    std::vector<NodeBlock> blocks;
-    if (m_extra)
-      m_extra->hessian_blocks(x, t, iteration == 0 || project, blocks);
-    // The matrix's pass over the elements gives the body's energy and gradient too.
-    BodyEnergy energy;
-    Eigen::VectorXd gradient;
-    report.projected_elements +=
-        m_linear.prepare(x, project, stiffness_scale, mass_term, blocks, &energy, &gradient);
-    if (!std::isfinite(energy.energy)) {
-      m_failure = fmt::format("{} inverts element {} (J = {:.3g})",
-                              iteration == 0 ? "moving the prescribed nodes" : "the step",
-                              energy.first_inverted, energy.inverted_j);
+  // The step minimises (1 + h alpha) / (2 h^2) |x - x_s - h v_s / (1 + h alpha)|_M^2 + W(x) -
+  // t f.x + extra + beta / (2 h) (x - x_s)^T K_s (x - x_s): its stationarity is implicit
+  // Euler's M (v - v_s) = h f(x) - h alpha M v - h beta K_s v with x = x_s + h v, and Newton's
+  // first iteration from x_s is Baraff and Witkin's linearised solve.
+  const double alpha = m_settings.mass_damping_per_s;
+  const double beta = m_settings.stiffness_damping_s;
+  const Eigen::VectorXd start = m_dofs.gather(x);
+  m_inertia.weight = (1.0 + h * alpha) / (h * h) * m_free_mass;
+  m_inertia.target = start + h / (1.0 + h * alpha) * m_dofs.gather(v);
+  if (beta > 0.0) {
+    if (!std::isfinite(m_body.energy(x).energy)) {
+      m_failure = "moving the prescribed nodes inverts an element";
       return false;
     }
-    gradient -= t * m_external;
-    if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient))) {
-      m_failure = "a node lies inside a contact obstacle and could not be moved out";
-      return false;
-    }
-    const Eigen::VectorXd force = -m_dofs.gather(gradient);
-
-    Eigen::VectorXd dv;
-    for (bool prepared = true;; prepared = false) {
-      if (!prepared) {
-        blocks.clear(); // the exact blocks out, their projections in
-        if (m_extra)
-          m_extra->hessian_blocks(x, t, true, blocks);
-        report.projected_elements +=
-            m_linear.prepare(x, project, stiffness_scale, mass_term, blocks);
-      }
-      Eigen::VectorXd Av;
-      m_linear.multiply(velocity, Av);
-      Eigen::VectorXd rhs;
-      if (iteration == 0) {
-        rhs = h * force - Av + m_free_mass.cwiseProduct(velocity);
-      } else {
-        rhs =
-            h * force - mass_term.cwiseProduct(velocity) + m_free_mass.cwiseProduct(start_velocity);
-        if (beta > 0.0) // h beta K v, with K v from A v
-          rhs -= (h * beta / stiffness_scale) * (Av - mass_term.cwiseProduct(velocity));
-      }
-      dv = Eigen::VectorXd::Zero(rhs.size());
-      const LinearSolveReport solve = m_linear.solve(rhs, dv);
-      report.linear_iterations += solve.iterations;
-      report.factorizations += solve.factorizations;
-      if (solve.ok && dv.allFinite())
-        break;
-      // Newton's later solves carry the contact's exact blocks: indefinite with them, a shorter
-      // sub-step (A's mass part grows against h^2 K) is cheaper than Newton with projected
-      // blocks, which converges only linearly on sliding nodes; the last halving projects.
-      if (solve.indefinite && iteration > 0 && !m_last_halving) {
-        m_failure = "the system matrix is indefinite";
-        return false;
-      }
-      if (solve.indefinite && !project && m_settings.projection == PsdProjection::automatic) {
-        project = true;
-        continue;
-      }
-      m_failure = solve.indefinite
-                      ? "the system matrix is indefinite"
-                      : fmt::format("the linear solver did not converge (relative residual {:.3g})",
-                                    solve.relative_residual);
-      return false;
-    }
-    // The move (h (v + dv) from the step's start, h dv after it) stops short of any contact
-    // surface; the velocity change shrinks with it.
-    const Eigen::VectorXd move = h * (iteration == 0 ? Eigen::VectorXd(velocity + dv) : dv);
-    double fraction = 1.0;
-    if (m_extra)
-      fraction = std::clamp(m_extra->max_step(x, m_dofs.expand(move), t), 0.0, 1.0);
-    // The state's energy and gradient: the step's result if it is done, which it is when the
-    // move went all the way and the step's equation holds to `iteration_tolerance` of the
-    // supports' force; else Newton goes on from here. With Newton iterations to come, a move
-    // that would invert an element is halved instead (with one solve, the time step is).
-    const Eigen::VectorXd x_before = x;
-    BodyEnergy after;
-    for (int backtrack = 0;; ++backtrack) {
-      x = x_before;
-      m_dofs.scatter_add(move, fraction, x);
-      after = m_body.energy_gradient(x, m_end_gradient);
-      if (std::isfinite(after.energy) || m_settings.max_iterations == 1 ||
-          backtrack == max_backtracks)
-        break;
-      fraction *= 0.5;
-    }
-    m_end_energy = after.energy;
-    if (!std::isfinite(after.energy)) {
-      m_failure = fmt::format("the step inverts element {} (J = {:.3g})", after.first_inverted,
-                              after.inverted_j);
-      return false;
-    }
-    velocity = iteration == 0 ? Eigen::VectorXd(fraction * (velocity + dv))
-                              : Eigen::VectorXd(velocity + fraction * dv);
-    if (fraction >= 1.0 && converged(x, h, t, velocity, start_velocity, mass_term)) {
-      m_step_met = true;
-      break;
-    }
+    // K_s projected: a dissipation potential must not release energy.
+    m_damping_stiffness->set_zero();
+    m_damping_stiffness->add_elements(m_body, x, true);
+    m_damping.factor = beta / h;
+    m_damping.start = start;
   }
-  m_dofs.scatter(velocity, v);
-  if (m_extra && !std::isfinite(m_extra->energy(x, t, nullptr))) {
-    m_failure = "the step would move a node across a contact surface";
+  m_engine.set_incremental_terms(&m_inertia, beta > 0.0 ? &m_damping : nullptr);
+
+  NewtonPolicy policy;
+  policy.max_iterations = m_settings.max_iterations;
+  policy.min_iterations = 1; // Baraff and Witkin's solve, whatever the state's residual
+  policy.residual_tolerance = m_settings.iteration_tolerance;
+  policy.energy_tolerance = NewtonConvergence::no_energy_test;
+  policy.support_force_n = m_support_force;
+  policy.saddle_steps = false;
+  // The contact's exact Hessian blocks in Newton's later iterations (their projection drops the
+  // bone's curvature and makes Newton linear on sliding nodes), projected in the first solve;
+  // indefinite with them, a shorter sub-step (the mass part grows against K) is cheaper than
+  // Newton with projected blocks; the last halving projects.
+  policy.exact_extra_from = 1;
+  policy.indefinite_exact_extra_fails = !m_last_halving;
+  // Implicit Euler takes its solves' steps whole where they are admissible; with Newton
+  // iterations to come, a move that would invert an element is halved instead (with one
+  // solve, the time step is).
+  policy.energy_decrease = false;
+  policy.admissible_backtracks = m_settings.max_iterations == 1 ? 0 : max_backtracks;
+
+  NewtonCounts counts;
+  std::optional<NewtonEngine::Evaluation> current;
+  const NewtonOutcome outcome = m_engine.minimise(x, t, policy, counts, current);
+  report.linear_iterations += counts.linear_iterations;
+  report.factorizations += counts.factorizations;
+  report.projected_elements += counts.projected_elements;
+  if (outcome == NewtonOutcome::failed) {
+    m_failure = counts.iterations == 0 && !std::isfinite(current->body.energy)
+                    ? "moving the prescribed nodes: " + m_engine.failure()
+                    : m_engine.failure();
     return false;
   }
+  m_step_met = outcome == NewtonOutcome::converged || m_settings.max_iterations == 1;
+  m_dofs.scatter((m_dofs.gather(x) - start) / h, v);
+  m_end = std::move(current);
   return true;
-}
-
-bool ImplicitEuler::converged(const Eigen::VectorXd& x, double h, double t,
-                              const Eigen::VectorXd& velocity,
-                              const Eigen::VectorXd& start_velocity,
-                              const Eigen::VectorXd& mass_term) const
-{
-  if (m_settings.max_iterations <= 1)
-    return true;
-  Eigen::VectorXd gradient = m_end_gradient - t * m_external;
-  if (m_extra && !std::isfinite(m_extra->energy(x, t, &gradient)))
-    return true; // the caller reports it
-  // The equation's residual h f - M (1 + h alpha) v + M v_start (the stiffness damping's
-  // h beta K v left out: it needs the matrix) against h times the supports' force at the last
-  // accepted frame (not this state's, which a wrong state inflates).
-  const Eigen::VectorXd free_gradient = m_dofs.gather(gradient);
-  double residual2 = 0.0;
-  for (Eigen::Index i = 0; i < free_gradient.size(); ++i) {
-    const double r =
-        -h * free_gradient(i) - mass_term(i) * velocity(i) + m_free_mass(i) * start_velocity(i);
-    residual2 += r * r;
-  }
-  const double scale = h * std::max({(t * m_external).norm(), m_support_force, m_force_floor});
-  return std::sqrt(residual2) <= m_settings.iteration_tolerance * scale;
 }
 
 double ImplicitEuler::support_force(const Eigen::VectorXd& x) const
@@ -221,11 +140,7 @@ double ImplicitEuler::support_force(const Eigen::VectorXd& x) const
   Eigen::VectorXd gradient;
   if (!std::isfinite(m_body.energy_gradient(x, gradient).energy))
     return 0.0;
-  double reaction2 = 0.0;
-  for (int dof = 0; dof < m_dofs.dof_count(); ++dof)
-    if (!m_dofs.is_free(dof))
-      reaction2 += gradient(dof) * gradient(dof);
-  return std::sqrt(reaction2);
+  return m_engine.reaction_norm(gradient);
 }
 
 void ImplicitEuler::start(const Eigen::VectorXd& x)
@@ -264,11 +179,8 @@ bool ImplicitEuler::frame(Eigen::VectorXd& x, Eigen::VectorXd& v, double t_befor
     return false;
   }
 
-  report.strain_energy_mj = m_end_energy;
-  residual = m_end_gradient;
-  residual -= report.load_factor * m_external;
-  if (m_extra)
-    m_extra->energy(x, report.load_factor, &residual);
+  report.strain_energy_mj = m_end->body.energy;
+  residual = m_end->gradient;
   double residual2 = 0.0;
   double reaction2 = 0.0;
   double inertia2 = 0.0;
@@ -281,8 +193,8 @@ bool ImplicitEuler::frame(Eigen::VectorXd& x, Eigen::VectorXd& v, double t_befor
     }
   }
   m_support_force = std::sqrt(reaction2);
-  const double scale =
-      std::max({(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_force_floor});
+  const double scale = std::max(
+      {(report.load_factor * m_external).norm(), std::sqrt(reaction2), m_engine.force_floor()});
   report.relative_residual = std::sqrt(residual2) / scale;
   report.relative_inertia = std::sqrt(inertia2) / scale;
   report.kinetic_energy_mj = 0.5 * v.dot(m_mass.cwiseProduct(v));

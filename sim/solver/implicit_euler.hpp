@@ -1,18 +1,22 @@
 #pragma once
-/// @brief Dynamics by implicit Euler (Baraff and Witkin 1998): one linearised solve per frame
-/// (more where contact cut its move short),
-/// lumped masses, Rayleigh damping, prescribed DOFs filtered out of the solve; a frame whose
-/// result would invert an element is redone in halved sub-steps.
+/// @brief Dynamics by implicit Euler (Baraff and Witkin 1998), each step the minimum of its
+/// incremental potential (inertia, strain energy, loads, contact and Rayleigh damping) found by
+/// the solids' one Newton engine: Baraff and Witkin's linearised solve is its first iteration,
+/// more follow while the step's equation is off. Lumped masses, prescribed DOFs filtered out of
+/// the solve; a frame whose result would invert an element is redone in halved sub-steps.
 
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 #include "sim/solver/linear_solver.hpp"
-#include "sim/solver/static_solver.hpp"
+#include "sim/solver/newton_engine.hpp"
+#include "sim/solver/stiffness_matrix.hpp"
 
 #include <Eigen/Core>
 
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,7 +105,7 @@ public:
   /// Adds `potential` (not owned; null: none) to the energy: its gradient and Hessian blocks enter
   /// each frame's solve, and the frame's move is shortened (velocity with it) so that no node
   /// crosses a contact surface.
-  void set_extra_potential(const ExtraPotential* potential) { m_extra = potential; }
+  void set_extra_potential(const ExtraPotential* potential);
 
   /// Lumped nodal masses per DOF (flat), tonnes (mm, N, s units).
   const Eigen::VectorXd& masses() const { return m_mass; }
@@ -111,11 +115,6 @@ private:
   bool step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, double t, FrameReport& report);
   /// The norm of the body's forces on the prescribed DOFs at x, N (0 if an element is inverted).
   double support_force(const Eigen::VectorXd& x) const;
-  /// Whether the implicit Euler equation of a step holds at x (with velocity v, from
-  /// start_velocity; the body's gradient at x in m_end_gradient) to iteration_tolerance; true
-  /// without iterations to do.
-  bool converged(const Eigen::VectorXd& x, double h, double t, const Eigen::VectorXd& velocity,
-                 const Eigen::VectorXd& start_velocity, const Eigen::VectorXd& mass_term) const;
 
   const HyperelasticBody& m_body;
   const BoundaryConditions& m_conditions;
@@ -125,12 +124,15 @@ private:
   Eigen::VectorXd m_mass;      ///< per DOF
   Eigen::VectorXd m_free_mass; ///< per free DOF
   StiffnessSolver m_linear;
-  /// The body's energy (N mm) and gradient (flat, N) at the end of the last step.
-  double m_end_energy = 0.0;
-  Eigen::VectorXd m_end_gradient;
-  double m_force_floor = 0.0;
+  NewtonEngine m_engine;
+  InertiaTerm m_inertia;
+  DampingTerm m_damping;
+  std::unique_ptr<StiffnessMatrix> m_damping_stiffness; ///< K_s, made where beta > 0
+  /// The state at the end of the last step: the body's energy, and its gradient less the loads
+  /// plus the extra potential's.
+  std::optional<NewtonEngine::Evaluation> m_end;
   /// The supports' force (norm over the prescribed DOFs) at the start or the last accepted
-  /// frame: the scale of converged()'s tolerance, N.
+  /// frame: the scale of the steps' convergence test, N.
   double m_support_force = 0.0;
   bool m_step_met = true;      ///< the last step's equation held to iteration_tolerance
   bool m_last_halving = false; ///< the frame's sub-steps cannot be halved again

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace ligsim::sim {
 
@@ -19,7 +21,9 @@ constexpr double stagnation_ratio = 0.5;
 NewtonConvergence::NewtonConvergence(double residual_tolerance, double energy_tolerance,
                                      double length_mm)
     : m_residual_tolerance(residual_tolerance)
-    , m_energy_tolerance(energy_tolerance > 0.0 ? energy_tolerance : residual_tolerance)
+    , m_energy_tolerance(energy_tolerance > 0.0    ? energy_tolerance
+                         : energy_tolerance == 0.0 ? residual_tolerance
+                                                   : std::numeric_limits<double>::infinity())
     , m_displacement_round_off_mm(displacement_round_off * length_mm)
 {
 }
@@ -42,7 +46,7 @@ ConvergenceVerdict NewtonConvergence::verdict(double relative_residual,
 {
   const bool small_residual = relative_residual <= m_residual_tolerance || residual_at_force_floor;
   const bool small_energy_change =
-      m_history.empty() ||
+      m_history.empty() || std::isinf(m_energy_tolerance) ||
       m_history.back().energy_change <= m_energy_tolerance * m_first_energy_change;
   if (small_residual && small_energy_change)
     return ConvergenceVerdict::converged;

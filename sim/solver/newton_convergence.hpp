@@ -25,7 +25,8 @@ struct IterationFigures {
 class NewtonConvergence {
 public:
   /// `length_mm` is the model size: displacement increments below 1e-8 of it are round-off
-  /// for the residuals this solver reaches.
+  /// for the residuals this solver reaches. `energy_tolerance`: 0 means residual_tolerance, a
+  /// negative one (no_energy_test) no energy test.
   NewtonConvergence(double residual_tolerance, double energy_tolerance, double length_mm);
 
   /// Forgets the iterations of the previous solve.
@@ -39,6 +40,7 @@ public:
   /// iterations, energy changes <= ..., displacement increments <= ...").
   std::string floor_summary() const;
 
+  static constexpr double no_energy_test = -1.0;
   /// Iterations over which the residual must stagnate.
   static constexpr int window = 3;
   /// No floor lies above this relative residual: in double precision the floor of a problem

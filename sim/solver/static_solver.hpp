@@ -8,7 +8,7 @@
 #include "sim/solver/extra_potential.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
 #include "sim/solver/linear_solver.hpp"
-#include "sim/solver/newton_convergence.hpp"
+#include "sim/solver/newton_engine.hpp"
 #include "sim/solver/tangent_inertia.hpp"
 
 #include <Eigen/Core>
@@ -19,18 +19,6 @@
 #include <vector>
 
 namespace ligsim::sim {
-
-/// When element stiffnesses are projected to positive semi-definite.
-enum class PsdProjection {
-  /// only for a Newton step whose matrix proved indefinite, and only where the unprojected
-  /// Newton step (L D L^T, line search on the residual) makes no progress
-  automatic,
-  always,
-  never, ///< an indefinite matrix fails the step (and triggers a cut-back)
-};
-
-PsdProjection parse_psd_projection(const std::string& text, const std::string& where);
-std::string to_string(PsdProjection projection);
 
 struct NewtonSettings {
   int load_steps = 10; ///< equal load steps from 0 to 1, unless load_factors is given
@@ -53,28 +41,13 @@ struct NewtonSettings {
   bool verbose = false; ///< one line per Newton iteration on stderr
 };
 
-/// What one nominal load step cost and reached.
-struct StepReport {
+/// What one nominal load step cost and reached (its Newton counts summed over its sub-steps).
+struct StepReport : NewtonCounts {
   int step = 0; ///< 1-based
   double load_factor = 0.0;
   bool converged = false;
-  int iterations = 0; ///< Newton iterations, all sub-steps together
   int substeps = 0;
   int cutbacks = 0;
-  int linear_iterations = 0;     ///< CG iterations
-  int factorizations = 0;        ///< sparse Cholesky factorisations
-  int projected_elements = 0;    ///< element stiffness projections, summed over iterations
-  int indefinite_iterations = 0; ///< iterations whose stiffness matrix was indefinite
-  int line_search_backtracks = 0;
-  int saddle_iterations = 0; ///< iterations by the unprojected (indefinite) Newton step
-  /// iterations by the shifted Newton step (K + sigma D, a retry after a failed sub-step with an
-  /// extra potential and an indefinite stiffness)
-  int shifted_iterations = 0;
-  double relative_residual = 0.0;
-  /// Converged at the round-off floor (residual stagnating a hair above the tolerance);
-  /// `floor` gives the figures.
-  bool converged_at_floor = false;
-  std::string floor;
   /// Negative eigenvalues of the tangent stiffness at the converged state, counted where a
   /// step met an indefinite stiffness (0 otherwise): > 0 is an unstable equilibrium.
   int negative_eigenvalues = 0;
@@ -120,7 +93,10 @@ public:
 
   /// Adds `potential` (not owned; null: none) to the energy: its gradient enters the residual,
   /// its Hessian blocks the Newton matrix, its step bound the line search.
-  void set_extra_potential(const ExtraPotential* potential) { m_extra = potential; }
+  void set_extra_potential(const ExtraPotential* potential)
+  {
+    m_engine.set_extra_potential(potential);
+  }
 
   /// Guesses of the steps' equilibria (starts[k] for step k + 1; an empty one: none), such as
   /// a free knee's search found them: a step is solved from its guess at once, and along the
@@ -131,67 +107,28 @@ public:
   std::size_t linear_solver_storage() const { return m_linear.stored_values(); }
 
 private:
-  struct Evaluation {
-    BodyEnergy body;
-    Eigen::VectorXd gradient;
-    double total_energy = 0.0;       ///< strain energy minus the work of the external forces
-    bool extra_inadmissible = false; ///< the extra potential is infinite
-  };
-
   /// The load factors of the reported steps.
   std::vector<double> step_targets() const;
   /// Brings the converged state to load factor t1; false (with m_failure set) when it cannot.
   bool advance(Eigen::VectorXd& x, double t1, StepReport& report);
   /// Moves the prescribed DOFs to their targets at t1, the free ones by the linear predictor.
   bool move_prescribed(Eigen::VectorXd& x, double t1, StepReport& report);
-  /// Newton direction for the free DOFs; handles projection. With `allow_saddle`, an
-  /// indefinite stiffness gives the unprojected Newton step (`saddle` set). False when none is
-  /// found.
-  bool newton_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
-                        Eigen::VectorXd& direction, StepReport& report, bool allow_saddle,
-                        bool& saddle);
-  /// Newton direction of the unprojected K(x) and exact extra Hessian, shifted by sigma D (D a
-  /// stiffness scale per DOF: m_shift_unit plus the extra Hessian's diagonal) where that is
-  /// indefinite, sigma growing tenfold until the matrix
-  /// is positive definite and the step goes downhill. Unlike the element-wise projection, it
-  /// keeps the negative curvature of a buckling mode, so past a bifurcation the energy descent
-  /// follows the mode instead of crawling. False (m_failure set) when no shift up to 1e6 works.
-  bool shifted_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
-                         Eigen::VectorXd& direction, StepReport& report);
-  /// Backtracking along `direction` from `current` at x: on the total energy (Armijo), or for
-  /// a saddle step on the residual norm. Sets x_trial, trial, alpha; false when no step is
-  /// admissible (m_failure says why for an energy search).
-  bool line_search(const Eigen::VectorXd& x, const Evaluation& current,
-                   const Eigen::VectorXd& direction, bool saddle, double t1, StepReport& report,
-                   Eigen::VectorXd& x_trial, Evaluation& trial, double& alpha);
   /// The eigenpair nearest zero of the tangent at x, if it can be factorised.
   std::optional<StabilityMode> stability_mode(const Eigen::VectorXd& x);
-  void evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const;
-  /// |free part of the gradient| / max(|load at t1|, |reactions|, force floor).
-  double relative_residual(const Eigen::VectorXd& gradient, double t1) const;
-  std::string describe_inversion(const BodyEnergy& energy) const;
 
   const HyperelasticBody& m_body;
   const BoundaryConditions& m_conditions;
   NewtonSettings m_settings;
   DofPartition m_dofs;
-  Eigen::VectorXd m_rest;
   Eigen::VectorXd m_external; ///< at load factor 1
   StiffnessSolver m_linear;
   TangentInertia m_tangent;
-  NewtonConvergence m_convergence;
+  NewtonEngine m_engine;
+  NewtonPolicy m_policy;
   std::vector<int> m_boundary_elements; ///< elements with a prescribed DOF
-  double m_force_floor = 0.0;           ///< absolute residual below which any state converges
-  double m_energy_unit = 0.0;           ///< mu V: the scale of energy round-off, N mm
   std::string m_failure;
-  const ExtraPotential* m_extra = nullptr;
   double m_converged_t = 0.0; ///< load factor of the last converged state
   std::vector<Eigen::VectorXd> m_step_starts;
-  /// mu times the lumped rest volume per free DOF over the mean element size squared, N/mm: the
-  /// unit of the shifted Newton step's diagonal
-  Eigen::VectorXd m_shift_unit;
-  bool m_shifted = false; ///< Newton steps are shifted (until the nominal load step converges)
-  double m_shift = 0.0;   ///< the last sigma that gave a descent direction
 };
 
 } // namespace ligsim::sim
