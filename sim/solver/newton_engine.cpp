@@ -94,6 +94,11 @@ void NewtonEngine::set_shifted(bool shifted)
 void NewtonEngine::evaluate(const Eigen::VectorXd& x, double t, Evaluation& out) const
 {
   out.body = m_body.energy_gradient(x, out.gradient);
+  complete(x, t, out);
+}
+
+void NewtonEngine::complete(const Eigen::VectorXd& x, double t, Evaluation& out) const
+{
   out.gradient -= t * m_external;
   out.total_energy = out.body.energy - t * m_external.dot(x - m_rest);
   out.extra_inadmissible = false;
@@ -142,7 +147,8 @@ std::string NewtonEngine::describe_inversion(const BodyEnergy& energy) const
 }
 
 int NewtonEngine::prepare(const Eigen::VectorXd& x, bool project,
-                          const std::vector<NodeBlock>& blocks, const Eigen::VectorXd& shift)
+                          const std::vector<NodeBlock>& blocks, const Eigen::VectorXd& shift,
+                          Evaluation* body)
 {
   // Pi's Hessian: K (1 + c, the damping's K_s taken as K) + blocks + inertia weights + shift.
   const double damping = m_damping ? m_damping->factor : 0.0;
@@ -150,7 +156,9 @@ int NewtonEngine::prepare(const Eigen::VectorXd& x, bool project,
   if (m_inertia)
     diagonal =
         diagonal.size() == 0 ? m_inertia->weight : Eigen::VectorXd(diagonal + m_inertia->weight);
-  return m_linear.prepare(x, project, 1.0 + damping, diagonal, blocks);
+  return body ? m_linear.prepare(x, project, 1.0 + damping, diagonal, blocks, &body->body,
+                                 &body->gradient)
+              : m_linear.prepare(x, project, 1.0 + damping, diagonal, blocks);
 }
 
 bool NewtonEngine::direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
@@ -165,10 +173,16 @@ bool NewtonEngine::direction(const Eigen::VectorXd& x, double t, const Eigen::Ve
   // obstacle's curvature, and Newton converges only linearly on nodes that slide over it.
   bool exact_extra = m_extra && !project && iteration >= policy.exact_extra_from;
   std::vector<NodeBlock> blocks;
-  if (m_extra)
+  if (m_prepared)
+    blocks.swap(m_prepared->blocks);
+  else if (m_extra)
     m_extra->hessian_blocks(x, t, !exact_extra, blocks);
   for (;;) {
-    counts.projected_elements += prepare(x, project, blocks);
+    if (m_prepared)
+      counts.projected_elements += m_prepared->projected_elements;
+    else
+      counts.projected_elements += prepare(x, project, blocks);
+    m_prepared.reset();
     direction = Eigen::VectorXd::Zero(rhs.size());
     const LinearSolveReport solve = m_linear.solve(rhs, direction);
     counts.linear_iterations += solve.iterations;
@@ -344,6 +358,20 @@ bool NewtonEngine::line_search(const Eigen::VectorXd& x, const Evaluation& curre
 NewtonOutcome NewtonEngine::minimise(Eigen::VectorXd& x, double t, const NewtonPolicy& policy,
                                      NewtonCounts& counts, std::optional<Evaluation>& current)
 {
+  m_prepared.reset();
+  if (!current && policy.min_iterations > 0 && !m_shifted) {
+    // The first iteration needs the matrix at x: one pass over the elements gives it with the
+    // energy and the gradient, and direction() takes it as it is.
+    current.emplace();
+    m_prepared.emplace();
+    const bool project = m_projection == PsdProjection::always;
+    if (m_extra)
+      m_extra->hessian_blocks(x, t, project || policy.exact_extra_from > 0, m_prepared->blocks);
+    m_prepared->projected_elements = prepare(x, project, m_prepared->blocks, {}, &*current);
+    complete(x, t, *current);
+    if (!std::isfinite(current->body.energy))
+      m_prepared.reset();
+  }
   if (!current) {
     current.emplace();
     evaluate(x, t, *current);

@@ -156,9 +156,12 @@ private:
   /// mode, so past a bifurcation the energy descent follows the mode instead of crawling.
   bool shifted_direction(const Eigen::VectorXd& x, double t, const Eigen::VectorXd& rhs,
                          Eigen::VectorXd& direction, NewtonCounts& counts);
-  /// The matrix of Pi's Hessian at x (element projection `project`) with `blocks`.
+  /// The matrix of Pi's Hessian at x (element projection `project`) with `blocks`; with `body`,
+  /// the same pass gives its body energy and gradient (complete() finishes the evaluation).
   int prepare(const Eigen::VectorXd& x, bool project, const std::vector<NodeBlock>& blocks,
-              const Eigen::VectorXd& shift = Eigen::VectorXd());
+              const Eigen::VectorXd& shift = Eigen::VectorXd(), Evaluation* body = nullptr);
+  /// The evaluation at x from its body energy and gradient: loads, extra, inertia, damping.
+  void complete(const Eigen::VectorXd& x, double t, Evaluation& out) const;
   /// Backtracking along `direction` from `current` at x: on Pi (Armijo, or any admissible
   /// fraction), or for a saddle step on the residual norm. Sets x_trial, trial, alpha; false
   /// when no step is acceptable (failure() says why for an energy search).
@@ -185,6 +188,12 @@ private:
   /// mu times the lumped rest volume per free DOF over the mean element size squared, N/mm: the
   /// unit of the shifted Newton step's diagonal
   Eigen::VectorXd m_shift_unit;
+  /// A matrix prepared with the first evaluation of a solve, for its first direction.
+  struct Prepared {
+    std::vector<NodeBlock> blocks;
+    int projected_elements = 0;
+  };
+  std::optional<Prepared> m_prepared;
   bool m_shifted = false;
   double m_shift = 0.0; ///< the last sigma that gave a descent direction
   std::string m_failure;

@@ -1,5 +1,6 @@
 #!/bin/bash
-# Interactive flexion frames per second (bench_flexion) of two builds side by side: ROUNDS rounds,
+# Interactive flexion frames per second (bench_flexion, the shipped max_iterations 12) of two
+# builds side by side: ROUNDS rounds,
 # each running every case (contact off, d_hat 0.3 mm, d_hat 1 mm) with BEFORE's and AFTER's
 # bench_flexion in turn (interleaved, so both see the same machine load); medians of the frames
 # per second and of the main thread's CPU time of the sweep. Each case reads its own copy of the
@@ -24,7 +25,7 @@ for round in $(seq "$ROUNDS"); do
     for build in before after; do
       binary=$BEFORE
       [ "$build" = after ] && binary=$AFTER
-      line=$(LIGSIM_BENCH_MODEL="$OUT/model-$arg" "$binary" --benchmark_filter="/$arg/" 2>&1 |
+      line=$(LIGSIM_BENCH_MODEL="$OUT/model-$arg" "$binary" --benchmark_filter="/$arg/12/" 2>&1 |
         grep '^BM_')
       fps=$(echo "$line" | grep -o 'frames_per_second=[0-9.]*' | cut -d= -f2)
       cpu=$(echo "$line" | awk '{print $4}')
