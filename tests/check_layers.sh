@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Fails, naming the files, if the core (common/, stages/, sim/) reaches for rendering or a display:
 # a header of one of VTK's rendering modules, an X server, or the rendering libraries in its
-# CMake files. Pictures and windows belong to pipeline/render and pipeline/view.
+# CMake files. Pictures and windows belong to pipeline/render and pipeline/view. Also fails where
+# a header of sim/ includes nlohmann/json: results are typed there and written as JSON in
+# pipeline/reports.
 # Arguments: the hierarchy files of VTK's rendering modules.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,6 +27,12 @@ if found=$(core_sources | xargs -0 grep -nE "$pattern"); then
 fi
 if found=$(core_sources | xargs -0 grep -nE 'Xvfb|"DISPLAY"|<X11/'); then
   echo "the core deals with an X display (pipeline/render/offscreen_display does):" >&2
+  echo "$found" >&2
+  status=1
+fi
+if found=$(find sim -name '*.hpp' -print0 | xargs -0 grep -nE '#include[[:space:]]*<nlohmann/'); then
+  echo "a simulator header includes nlohmann/json (type the result in sim/, write its JSON in" >&2
+  echo "pipeline/reports):" >&2
   echo "$found" >&2
   status=1
 fi

@@ -66,8 +66,8 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
   parameters["axis"] = {{"method", axis.method},
                         {"point_mm", json_vector3(axis.axis.point_mm)},
                         {"direction", json_vector3(axis.axis.direction)},
-                        {"fit", axis.figures}};
-  parameters["motion"] = motion.figures;
+                        {"fit", reports::to_json(axis.figures)}};
+  parameters["motion"] = reports::to_json(motion.figures);
   parameters["motion"]["joint_coordinate_system"] = {
       {"origin_mm", json_vector3(motion.jcs.origin_mm)},
       {"flexion_axis", json_vector3(motion.jcs.flexion_axis)},
@@ -130,18 +130,15 @@ void log_motion(const sim::KneeMotion& motion)
   const Eigen::Vector3d& d = motion.axis.axis.direction;
   log_info(fmt::format("flexion axis: {} (direction {:.3f}, {:.3f}, {:.3f})", motion.axis.method,
                        d.x(), d.y(), d.z()));
-  if (motion.figures.contains("other_axis")) {
-    const nlohmann::json& other = motion.figures["other_axis"];
-    if (other.contains("angle_deg"))
-      log_info(fmt::format("flexion axis: the {} axis lies {:.1f} degrees from it",
-                           other["method"].get<std::string>(), other["angle_deg"].get<double>()));
+  if (const std::optional<sim::OtherAxis>& other = motion.figures.other_axis) {
+    if (other->found)
+      log_info(fmt::format("flexion axis: the {} axis lies {:.1f} degrees from it", other->method,
+                           other->angle_deg));
     else
-      log_info(fmt::format("flexion axis: no {} axis to compare ({})",
-                           other["method"].get<std::string>(),
-                           other["not_available"].get<std::string>()));
+      log_info(fmt::format("flexion axis: no {} axis to compare ({})", other->method,
+                           other->not_available));
   }
-  log_info(fmt::format("knee motion: {} ({} knee)", motion.figures["path"].get<std::string>(),
-                       motion.figures["side"].get<std::string>()));
+  log_info(fmt::format("knee motion: {} ({} knee)", motion.figures.path, motion.figures.side));
 }
 
 /// One ligament's results for summary.json.
@@ -150,10 +147,10 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
   const sim::SweepResult& result = sweep.result;
   nlohmann::json entries = nlohmann::json::array();
   for (const sim::AngleResult& angle : result.angles)
-    entries.push_back(sim::angle_json(angle));
+    entries.push_back(reports::to_json(angle));
   const sim::LigamentSettings& ligament = sweep.settings.ligament;
   nlohmann::json json = {{"angles", entries},
-                         {"setup", sweep.setup},
+                         {"setup", reports::to_json(sweep.setup)},
                          {"unrelaxed_prestretch_energy_mj", result.unrelaxed_energy_mj},
                          {"initial_overlap", reports::to_json(result.overlap)},
                          {"footprints", reports::footprints_json(sweep.footprints, ligament.name)},
@@ -161,7 +158,7 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
                           {{"ligament", ligament.name},
                            {"failure_strain", ligament.failure_strain},
                            {"failure_load_n", ligament.failure_load_n},
-                           {"warnings", sweep.warnings}}},
+                           {"warnings", reports::to_json(sweep.warnings)}}},
                          {"material", material_json(sweep.settings.material)},
                          {"in_situ_strain", sweep.settings.in_situ_strain},
                          {"success", result.success}};
@@ -348,7 +345,7 @@ void run_flexion(const FlexionJobOptions& options)
     results["pairs"] = reports::to_json(sim::pairs_over_sweep(ligaments, states, options.out));
   else { // a one-ligament model: its results at the top, and its setup, as before knees
     results.update(results["ligaments"][sweeps.front().name]);
-    summary.stage("setup").update(sweeps.front().setup);
+    summary.stage("setup").update(reports::to_json(sweeps.front().setup));
   }
   results["success"] = success;
   if (settings.mode == sim::FlexionMode::interactive)

@@ -1,10 +1,10 @@
 #include "pipeline/commands/commands.hpp"
+#include "pipeline/scenes/scene_runner.hpp"
 
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim/scene/scene_runner.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -58,7 +58,7 @@ void run_simulate(const SimulateOptions& options)
     sets[name] = nodes.size();
   parameters["node_sets"] = sets;
 
-  const sim::SceneRunReport report = sim::run_scene(scene, options.out, summary);
+  const scenes::SceneRunReport report = scenes::run_scene(scene, options.out, summary);
   summary.write(options.out);
   if (!report.success)
     fail<SolverError>("{}: {} (outputs up to the last good state are in {})",

@@ -1,5 +1,6 @@
 #include "pipeline/commands/commands.hpp"
 #include "pipeline/commands/flexion_options.hpp"
+#include "pipeline/reports/verify_reports.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
@@ -171,7 +172,7 @@ void run_compression(const CubeOptions& options, const sim::FebioReference& refe
   }
   summary.add_stage("solve", solve_meter, {{"runs", results.size()}});
   ensure_directory(options.out);
-  const nlohmann::json json = sim::cube_results_json(results);
+  const nlohmann::json json = reports::to_json(results);
   write_text_atomically(options.out / "verify.json", json.dump(2) + "\n");
   write_text_atomically(options.out / "verify.md",
                         fmt::format("# Cube compression, checked by equilibrium\n\n{} tets, "
@@ -241,7 +242,7 @@ void run_cube(const CubeOptions& options)
   summary.add_stage("solve", solve_meter, {{"runs", results.size()}});
 
   ensure_directory(options.out);
-  const nlohmann::json json = sim::cube_results_json(results);
+  const nlohmann::json json = reports::to_json(results);
   write_text_atomically(options.out / "verify.json", json.dump(2) + "\n");
   const std::string table = "# Cube verification against FEBio 4.11\n\n"
                             "Errors in percent of the cube edge (1 mm): top face nodes, then all "
@@ -310,7 +311,7 @@ void run_flexion_stability(const StabilityOptions& options)
   }
   progress.finish();
   summary.add_stage("cases", meter, {{"cases", results.size()}});
-  const nlohmann::json json = sim::flexion_stability_json(results);
+  const nlohmann::json json = reports::to_json(results);
   write_text_atomically(options.out / "stability.json", json.dump(2) + "\n");
   write_text_atomically(options.out / "stability.csv", sim::flexion_stability_csv(results));
   write_text_atomically(
@@ -350,7 +351,7 @@ void run_stability(const StabilityOptions& options)
   }
   summary.add_stage("cases", meter, {{"cases", results.size()}});
   ensure_directory(options.out);
-  const nlohmann::json json = sim::stability_json(results);
+  const nlohmann::json json = reports::to_json(results);
   write_text_atomically(options.out / "stability.json", json.dump(2) + "\n");
   write_text_atomically(options.out / "stability.md",
                         fmt::format("# Stability on stiff and extreme cases\n\nUnit cube, {0} x "

@@ -117,4 +117,136 @@ nlohmann::json footprints_json(const std::vector<sim::Footprint>& prints,
   return json;
 }
 
+nlohmann::json to_json(const sim::AngleResult& angle)
+{
+  const Eigen::Vector3d femur_net = sim::femur_net_force(angle);
+  nlohmann::json entry = {{"angle_deg", angle.angle_deg},
+                          {"converged", angle.converged},
+                          {"strain_energy_mj", angle.strain_energy_mj},
+                          {"max_fiber_stretch", angle.max_fiber_stretch},
+                          {"mean_fiber_stretch", angle.mean_fiber_stretch},
+                          {"max_fiber_strain", angle.max_fiber_stretch - 1.0},
+                          {"mean_fiber_strain", angle.mean_fiber_stretch - 1.0},
+                          {"volume_beyond_failure_strain", angle.failed_volume_fraction},
+                          {"femur_force_n", json_vector3(angle.femur_force_n)},
+                          {"femur_force_magnitude_n", angle.femur_force_n.norm()},
+                          {"femur_net_force_n", json_vector3(femur_net)},
+                          {"femur_net_force_magnitude_n", femur_net.norm()},
+                          {"tibia_force_n", json_vector3(angle.tibia_force_n)},
+                          {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
+                          {"newton_iterations", angle.newton_iterations},
+                          {"substeps", angle.substeps},
+                          {"shifted_iterations", angle.shifted_iterations},
+                          {"relative_residual", angle.relative_residual},
+                          {"min_j", angle.min_j},
+                          {"wall_s", angle.wall_s}};
+  if (angle.frame >= 0)
+    entry["frame"] = angle.frame;
+  if (!std::isnan(angle.time_s))
+    entry["time_s"] = angle.time_s;
+  if (!std::isnan(angle.max_regional_fiber_stretch))
+    entry["max_regional_fiber_strain"] = angle.max_regional_fiber_stretch - 1.0;
+  if (!std::isnan(angle.length_mm))
+    entry.update({{"length_mm", angle.length_mm},
+                  {"length_change_mm", angle.length_change_mm},
+                  {"length_change_pct", angle.length_change_pct}});
+  if (!angle.contact.empty()) {
+    nlohmann::json bones = nlohmann::json::object();
+    for (const sim::BoneContact& bone : angle.contact) {
+      bones[bone.bone] = {{"min_gap_mm", bone.min_gap_mm}, {"penetration_mm", bone.penetration_mm}};
+      if (bone.in_solve)
+        bones[bone.bone].update({{"force_n", json_vector3(bone.force_n)},
+                                 {"force_magnitude_n", bone.force_n.norm()},
+                                 {"area_mm2", bone.area_mm2},
+                                 {"nodes", bone.nodes}});
+    }
+    entry["contact"] = bones;
+  }
+  return entry;
+}
+
+nlohmann::json to_json(const sim::LigamentSetup& setup)
+{
+  nlohmann::json contact = {{"surface_nodes", setup.contact.surface_nodes},
+                            {"voxel_mm", setup.contact.voxel_mm},
+                            {"band_mm", setup.contact.band_mm}};
+  for (const sim::ContactGridFigures& bone : setup.contact.bones)
+    contact[bone.bone] = {{"cache", bone.cache.string()},
+                          {"reused", bone.grid.reused},
+                          {"build_s", bone.grid.build_s},
+                          {"active_voxels", bone.grid.active_voxels},
+                          {"memory_mib", bone.grid.memory_bytes / 1048576.0},
+                          {"triangles", bone.triangles},
+                          {"open_edges", bone.open_edges}};
+  return {{"nodes", setup.nodes},
+          {"tets", setup.tets},
+          {"femur_nodes", setup.femur_nodes},
+          {setup.distal_bone + "_nodes", setup.distal_nodes},
+          {"rest_volume_mm3", setup.rest_volume_mm3},
+          {"contact", contact}};
+}
+
+nlohmann::json to_json(const std::vector<sim::AngleWarning>& warnings)
+{
+  nlohmann::json json = nlohmann::json::array();
+  for (const sim::AngleWarning& warning : warnings)
+    json.push_back({{"angle_deg", warning.angle_deg}, {"warning", warning.warning}});
+  return json;
+}
+
+nlohmann::json to_json(const sim::AxisFigures& figures)
+{
+  if (const auto* points = std::get_if<sim::AxisPoints>(&figures))
+    return {{"first_mm", json_vector3(points->first_mm)},
+            {"second_mm", json_vector3(points->second_mm)}};
+  if (const auto* fit = std::get_if<sim::CondyleFitFigures>(&figures))
+    return {{"radius_mm", fit->radius_mm},
+            {"rms_residual_mm", fit->rms_residual_mm},
+            {"span_mm", fit->span_mm},
+            {"points_used", fit->points_used},
+            {"points_considered", fit->points_considered},
+            {"proximal", json_vector3(fit->proximal)},
+            {"posterior_hint", json_vector3(fit->posterior_hint)}};
+  const auto& epicondyles = std::get<sim::EpicondylarFigures>(figures);
+  return {{"medial_epicondyle_mm", json_vector3(epicondyles.medial_epicondyle_mm)},
+          {"lateral_epicondyle_mm", json_vector3(epicondyles.lateral_epicondyle_mm)},
+          {"length_mm", epicondyles.length_mm},
+          {"oriented", epicondyles.oriented}};
+}
+
+nlohmann::json to_json(const sim::MotionFigures& figures)
+{
+  nlohmann::json json;
+  if (const std::optional<sim::OtherAxis>& other = figures.other_axis) {
+    nlohmann::json& entry = json["other_axis"];
+    entry["method"] = other->method;
+    if (other->found) {
+      entry["direction"] = json_vector3(other->found->axis.direction);
+      entry["point_mm"] = json_vector3(other->found->axis.point_mm);
+      entry["angle_deg"] = other->angle_deg;
+      entry["figures"] = to_json(other->found->figures);
+    } else {
+      entry["not_available"] = other->not_available;
+    }
+  }
+  const sim::TibialAxisFigures& tibial = figures.tibial_axis;
+  json["tibial_axis"] = {{"source", tibial.source}, {"direction", json_vector3(tibial.direction)}};
+  if (tibial.angle_to_proximal_deg)
+    json["tibial_axis"]["angle_to_proximal_deg"] = *tibial.angle_to_proximal_deg;
+  const sim::BuiltPose& built = figures.built_pose;
+  if (built.flexion_deg)
+    json["built_pose"] = {{"flexion_deg", *built.flexion_deg},
+                          {"femoral_shaft", json_vector3(built.femoral_shaft)},
+                          {"source", built.source},
+                          {"note", "the angles swept are counted from the built pose"}};
+  else
+    json["built_pose"] = {{"not_measured", built.not_measured}};
+  json["side"] = figures.side;
+  json["frame_source"] = figures.frame_source;
+  json["path"] = figures.path;
+  if (!figures.note.empty())
+    json["note"] = figures.note;
+  return json;
+}
+
 } // namespace ligsim::reports

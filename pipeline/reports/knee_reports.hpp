@@ -6,6 +6,9 @@
 
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/initial_overlap.hpp"
+#include "sim/flexion/knee_flexion.hpp"
+#include "sim/flexion/knee_motion.hpp"
+#include "sim/flexion/knee_sweep.hpp"
 #include "sim/flexion/ligament_pairs.hpp"
 #include "sim/flexion/plausibility.hpp"
 #include "sim/kinematics/joint_coordinates.hpp"
@@ -16,6 +19,22 @@
 #include <vector>
 
 namespace ligsim::reports {
+
+/// One angle of a sweep (summary.json's per-angle entries).
+nlohmann::json to_json(const sim::AngleResult& angle);
+
+/// How the flexion axis was found: the two points, the condyle fit's figures, or the epicondyles.
+nlohmann::json to_json(const sim::AxisFigures& figures);
+
+/// How the knee's motion was resolved: the other anatomical axis, the tibial axis, the built
+/// pose, the side and the path.
+nlohmann::json to_json(const sim::MotionFigures& figures);
+
+/// What a ligament's sweep was set up with: nodes, tets, volume, the contact grids.
+nlohmann::json to_json(const sim::LigamentSetup& setup);
+
+/// The plausibility warnings, each with its angle.
+nlohmann::json to_json(const std::vector<sim::AngleWarning>& warnings);
 
 /// The gaps to each bone before the push and, when pushed, after it and how.
 nlohmann::json to_json(const sim::OverlapReport& report);

@@ -1,8 +1,8 @@
-#include "sim/solver/step_report_json.hpp"
+#include "pipeline/reports/step_report_json.hpp"
 
-namespace ligsim::sim {
+namespace ligsim::reports {
 
-nlohmann::json to_json(const StepReport& step)
+nlohmann::json to_json(const sim::StepReport& step)
 {
   nlohmann::json json = {{"step", step.step},
                          {"load_factor", step.load_factor},
@@ -31,4 +31,4 @@ nlohmann::json to_json(const StepReport& step)
   return json;
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::reports

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-namespace ligsim::sim {
+namespace ligsim::reports {
 
 /// The step's figures; `floor` and `instability` only where they say something.
-nlohmann::json to_json(const StepReport& step);
+nlohmann::json to_json(const sim::StepReport& step);
 
-} // namespace ligsim::sim
+} // namespace ligsim::reports

@@ -1,4 +1,6 @@
-#include "sim/scene/scene_runner.hpp"
+#include "pipeline/scenes/scene_runner.hpp"
+
+#include "pipeline/reports/step_report_json.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/progress.hpp"
@@ -8,14 +10,15 @@
 #include "sim/contact/contact_potential.hpp"
 #include "sim/contact/contact_surface.hpp"
 #include "sim/scene/scene_output.hpp"
-#include "sim/solver/step_report_json.hpp"
 #include "stages/io/surface_reader.hpp"
 
 #include <fmt/format.h>
 
 #include <memory>
 
-namespace ligsim::sim {
+namespace ligsim::scenes {
+
+using namespace sim;
 
 namespace fs = std::filesystem;
 
@@ -137,7 +140,7 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     const StaticResult result =
         solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
                             const Eigen::VectorXd& residual) {
-          nlohmann::json entry = to_json(step);
+          nlohmann::json entry = reports::to_json(step);
           entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                               fmt::format("{},{}", step.step, step.load_factor));
           if (contact)
@@ -227,4 +230,4 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
   return run;
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim::scenes

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-namespace ligsim::sim {
+namespace ligsim::scenes {
 
 struct SceneRunReport {
   bool success = false;
@@ -18,6 +18,7 @@ struct SceneRunReport {
 /// Writes step_NNNN.vtu files and series.pvd (unless disabled), reactions.csv, and fills
 /// `summary` (stages "setup" and "solve", results with one entry per load step or output
 /// frame: iterations, residual, energy, worst J, wall time, reaction per constraint set).
-SceneRunReport run_scene(const Scene& scene, const std::filesystem::path& out, RunSummary& summary);
+SceneRunReport run_scene(const sim::Scene& scene, const std::filesystem::path& out,
+                         RunSummary& summary);
 
-} // namespace ligsim::sim
+} // namespace ligsim::scenes

@@ -28,54 +28,6 @@ std::string step_label(const AngleResult& angle)
   return std::isnan(angle.time_s) ? angle_label(angle.angle_deg) : "t" + angle_label(angle.time_s);
 }
 
-nlohmann::json angle_json(const AngleResult& angle)
-{
-  const Eigen::Vector3d femur_net = femur_net_force(angle);
-  nlohmann::json entry = {{"angle_deg", angle.angle_deg},
-                          {"converged", angle.converged},
-                          {"strain_energy_mj", angle.strain_energy_mj},
-                          {"max_fiber_stretch", angle.max_fiber_stretch},
-                          {"mean_fiber_stretch", angle.mean_fiber_stretch},
-                          {"max_fiber_strain", angle.max_fiber_stretch - 1.0},
-                          {"mean_fiber_strain", angle.mean_fiber_stretch - 1.0},
-                          {"volume_beyond_failure_strain", angle.failed_volume_fraction},
-                          {"femur_force_n", json_vector3(angle.femur_force_n)},
-                          {"femur_force_magnitude_n", angle.femur_force_n.norm()},
-                          {"femur_net_force_n", json_vector3(femur_net)},
-                          {"femur_net_force_magnitude_n", femur_net.norm()},
-                          {"tibia_force_n", json_vector3(angle.tibia_force_n)},
-                          {"tibia_force_magnitude_n", angle.tibia_force_n.norm()},
-                          {"newton_iterations", angle.newton_iterations},
-                          {"substeps", angle.substeps},
-                          {"shifted_iterations", angle.shifted_iterations},
-                          {"relative_residual", angle.relative_residual},
-                          {"min_j", angle.min_j},
-                          {"wall_s", angle.wall_s}};
-  if (angle.frame >= 0)
-    entry["frame"] = angle.frame;
-  if (!std::isnan(angle.time_s))
-    entry["time_s"] = angle.time_s;
-  if (!std::isnan(angle.max_regional_fiber_stretch))
-    entry["max_regional_fiber_strain"] = angle.max_regional_fiber_stretch - 1.0;
-  if (!std::isnan(angle.length_mm))
-    entry.update({{"length_mm", angle.length_mm},
-                  {"length_change_mm", angle.length_change_mm},
-                  {"length_change_pct", angle.length_change_pct}});
-  if (!angle.contact.empty()) {
-    nlohmann::json bones = nlohmann::json::object();
-    for (const BoneContact& bone : angle.contact) {
-      bones[bone.bone] = {{"min_gap_mm", bone.min_gap_mm}, {"penetration_mm", bone.penetration_mm}};
-      if (bone.in_solve)
-        bones[bone.bone].update({{"force_n", json_vector3(bone.force_n)},
-                                 {"force_magnitude_n", bone.force_n.norm()},
-                                 {"area_mm2", bone.area_mm2},
-                                 {"nodes", bone.nodes}});
-    }
-    entry["contact"] = bones;
-  }
-  return entry;
-}
-
 FlexionOutput::FlexionOutput(std::vector<OutputLigament> ligaments, const KneeModel& bones,
                              RigidMotion femur, fs::path directory)
     : m_ligaments(std::move(ligaments))

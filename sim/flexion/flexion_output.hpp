@@ -8,7 +8,6 @@
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/scene/scene_output.hpp"
 
-#include <nlohmann/json.hpp>
 #include <vtkUnstructuredGrid.h>
 
 #include <filesystem>
@@ -22,9 +21,6 @@ namespace ligsim::sim {
 std::string angle_label(double angle_deg);
 /// The step in file names: its angle, or "t" and its time for a motion in time.
 std::string step_label(const AngleResult& angle);
-
-/// One row of the sweep as JSON (summary.json's per-angle entries).
-nlohmann::json angle_json(const AngleResult& angle);
 
 /// One ligament of the output.
 struct OutputLigament {

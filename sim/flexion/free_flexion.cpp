@@ -108,7 +108,7 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
   path_poses.insert(path_poses.end(), poses.begin(), poses.end());
   KneePath path = KneePath::table(KneePath::Parameter::flexion_deg, knots, path_poses,
                                   "the knee's free equilibrium (femur free in five coordinates)");
-  free.motion.figures["path"] = path.description();
+  free.motion.figures.path = path.description();
   free.motion.femur_path = std::make_shared<FemurPath>(motion.jcs, std::move(path), first, last);
   return free;
 }

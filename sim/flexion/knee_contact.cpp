@@ -68,13 +68,8 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
       bone->bound[static_cast<std::size_t>(n)] = true;
     bone->penetration = std::make_unique<BonePenetration>(triangles);
     const LevelSetFigures& grid = bone->grid->figures();
-    m_figures[name] = {{"cache", (cache_dir / (name + ".vdb")).string()},
-                       {"reused", grid.reused},
-                       {"build_s", grid.build_s},
-                       {"active_voxels", grid.active_voxels},
-                       {"memory_mib", grid.memory_bytes / 1048576.0},
-                       {"triangles", triangles.F.rows()},
-                       {"open_edges", open_edges(triangles)}};
+    m_figures.bones.push_back({name, cache_dir / (name + ".vdb"), bone->grid->figures(),
+                               triangles.F.rows(), open_edges(triangles)});
     obstacles.push_back({name, bone->grid.get(), bone->motion, attached});
     m_bones.push_back(std::move(bone));
   }
@@ -82,9 +77,9 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
   m_node_count = node_count;
   m_potential = std::make_unique<ContactPotential>(node_count, m_surface, std::move(obstacles),
                                                    config.barrier);
-  m_figures["surface_nodes"] = m_surface.nodes.size();
-  m_figures["voxel_mm"] = config.grid.voxel_mm;
-  m_figures["band_mm"] = config.grid.band_mm;
+  m_figures.surface_nodes = m_surface.nodes.size();
+  m_figures.voxel_mm = config.grid.voxel_mm;
+  m_figures.band_mm = config.grid.band_mm;
 }
 
 KneeContact::~KneeContact() = default;

@@ -4,12 +4,11 @@
 /// on the ligament's free surface nodes, and an independent check of penetration against the
 /// bone triangles themselves (winding number and distance: BonePenetration, not the grids).
 
+#include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/contact_config.hpp"
 #include "sim/contact/contact_potential.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -28,6 +27,23 @@ struct BoneContact {
   int nodes = 0;               ///< nodes within d_hat
   double min_gap_mm = 0.0;     ///< smallest grid distance of a contact node
   double penetration_mm = 0.0; ///< deepest node inside the triangles (independent), >= 0
+};
+
+/// One bone's contact grid as the sweep made it.
+struct ContactGridFigures {
+  std::string bone;
+  std::filesystem::path cache; ///< the grid's file
+  LevelSetFigures grid;        ///< reused or built, time, voxels, memory
+  Eigen::Index triangles = 0;
+  int open_edges = 0; ///< of the bone's surface
+};
+
+/// The bones' grids and the barrier's surface.
+struct KneeContactFigures {
+  std::vector<ContactGridFigures> bones;
+  std::size_t surface_nodes = 0;
+  double voxel_mm = 0.0;
+  double band_mm = 0.0;
 };
 
 class KneeContact {
@@ -56,7 +72,7 @@ public:
   std::unique_ptr<ContactPotential>
   resting_bones_shrunk_by(const std::vector<double>& start_offsets_mm) const;
   /// Per bone: grid voxels, memory, build or read time, open edges of the surface.
-  const nlohmann::json& figures() const { return m_figures; }
+  const KneeContactFigures& figures() const { return m_figures; }
 
   /// Per bone forces, areas, gaps and the independent penetration at positions x, load factor t;
   /// per node gap (mm) and pressure (MPa) into `gap_mm` and `pressure_mpa`. With `forces`
@@ -70,7 +86,7 @@ private:
   std::unique_ptr<ContactPotential> m_potential;
   ContactSurface m_surface;
   int m_node_count = 0;
-  nlohmann::json m_figures;
+  KneeContactFigures m_figures;
 };
 
 } // namespace ligsim::sim

@@ -30,8 +30,7 @@ ResolvedAxis axis_through_points(const AxisSettings& settings)
   ResolvedAxis resolved;
   resolved.axis = {settings.first_mm, direction.normalized()};
   resolved.method = "given as two points";
-  resolved.figures = {{"first_mm", json_vector3(settings.first_mm)},
-                      {"second_mm", json_vector3(settings.second_mm)}};
+  resolved.figures = AxisPoints{settings.first_mm, settings.second_mm};
   return resolved;
 }
 
@@ -52,13 +51,9 @@ ResolvedAxis axis_of_condyles(const KneeModel& model, const AxisSettings& settin
   ResolvedAxis resolved;
   resolved.axis = fit.axis;
   resolved.method = "cylinder fitted to the posterior femoral condyles";
-  resolved.figures = {{"radius_mm", fit.radius_mm},
-                      {"rms_residual_mm", fit.rms_residual_mm},
-                      {"span_mm", fit.span_mm},
-                      {"points_used", fit.points_used},
-                      {"points_considered", fit.points_considered},
-                      {"proximal", json_vector3(proximal)},
-                      {"posterior_hint", json_vector3(posterior.normalized())}};
+  resolved.figures = CondyleFitFigures{fit.radius_mm,         fit.rms_residual_mm,   fit.span_mm,
+                                       fit.points_used,       fit.points_considered, proximal,
+                                       posterior.normalized()};
   return resolved;
 }
 
@@ -106,17 +101,14 @@ ResolvedAxis axis_through_epicondyles(const AxisSettings& settings, const KneeAn
   ResolvedAxis resolved;
   resolved.axis = {0.5 * (medial + lateral), direction.normalized()};
   resolved.method = "transepicondylar: through the medial and lateral epicondyles";
-  resolved.figures = {{"medial_epicondyle_mm", json_vector3(medial)},
-                      {"lateral_epicondyle_mm", json_vector3(lateral)},
-                      {"length_mm", (lateral - medial).norm()},
-                      {"oriented", orientation}};
+  resolved.figures = EpicondylarFigures{medial, lateral, (lateral - medial).norm(), orientation};
   return resolved;
 }
 
 /// The tibia's long axis: its principal axis when the surface is long (a whole or most of a
 /// tibia), else the proximal direction.
 Eigen::Vector3d tibial_axis(const KneeModel& model, const Eigen::Vector3d& proximal,
-                            nlohmann::json& figures)
+                            TibialAxisFigures& figures)
 {
   const TriangleSurface tibia = triangle_surface(model.tibia, "tibia.vtp");
   const Eigen::RowVector3d mean = tibia.V.colwise().mean();
@@ -128,14 +120,11 @@ Eigen::Vector3d tibial_axis(const KneeModel& model, const Eigen::Vector3d& proxi
     Eigen::Vector3d axis = principal.eigenvectors().col(2);
     if (axis.dot(proximal) < 0.0)
       axis = -axis;
-    figures = {{"source", "principal axis of the tibia"},
-               {"direction", json_vector3(axis)},
-               {"angle_to_proximal_deg", angle_between_deg(axis, proximal)}};
+    figures = {"principal axis of the tibia", axis, angle_between_deg(axis, proximal)};
     return axis;
   }
-  figures = {{"source", "the proximal direction (the tibia surface is too short for its own "
-                        "axis)"},
-             {"direction", json_vector3(proximal)}};
+  figures = {"the proximal direction (the tibia surface is too short for its own axis)", proximal,
+             std::nullopt};
   return proximal;
 }
 
@@ -144,13 +133,13 @@ Eigen::Vector3d tibial_axis(const KneeModel& model, const Eigen::Vector3d& proxi
 /// shaft is the line through the centroids of the femur's 10 mm slices from 60 to 200 mm above
 /// its distal end (the distal shaft, above the condyles and the metaphysis' flare), so a femur
 /// shorter than 120 mm is not measured. The angles a sweep names stay counted from the built pose.
-nlohmann::json built_flexion(const KneeModel& model, const Eigen::Vector3d& proximal,
-                             const JointCoordinateSystem& jcs)
+BuiltPose built_flexion(const KneeModel& model, const Eigen::Vector3d& proximal,
+                        const JointCoordinateSystem& jcs)
 {
   constexpr double from_mm = 60.0, to_mm = 200.0, slice_mm = 10.0;
   constexpr int least_slices = 6;
   if (!model.femur)
-    return {{"not_measured", "the knee has no femur"}};
+    return {std::nullopt, Eigen::Vector3d::Zero(), "", "the knee has no femur"};
   const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
   const Eigen::VectorXd height = femur.V * proximal;
   const double distal = height.minCoeff();
@@ -167,10 +156,10 @@ nlohmann::json built_flexion(const KneeModel& model, const Eigen::Vector3d& prox
       centroids.push_back(sum / count);
   }
   if (static_cast<int>(centroids.size()) < least_slices)
-    return {{"not_measured",
-             fmt::format("the femur reaches {:.0f} mm above its distal end: its shaft shows from "
-                         "{:g} mm, and {:g} mm of it are needed",
-                         height.maxCoeff() - distal, from_mm, least_slices * slice_mm)}};
+    return {std::nullopt, Eigen::Vector3d::Zero(), "",
+            fmt::format("the femur reaches {:.0f} mm above its distal end: its shaft shows from "
+                        "{:g} mm, and {:g} mm of it are needed",
+                        height.maxCoeff() - distal, from_mm, least_slices * slice_mm)};
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(centroids.size()), 3);
   for (std::size_t i = 0; i < centroids.size(); ++i)
     points.row(static_cast<Eigen::Index>(i)) = centroids[i].transpose();
@@ -185,17 +174,16 @@ nlohmann::json built_flexion(const KneeModel& model, const Eigen::Vector3d& prox
   const Eigen::Vector3d tibia = (jcs.tibial_axis - jcs.tibial_axis.dot(e1) * e1).normalized();
   const Eigen::Vector3d femoral = (shaft - shaft.dot(e1) * e1).normalized();
   const double angle = std::atan2(e1.dot(tibia.cross(femoral)), tibia.dot(femoral)) / degree;
-  return {{"flexion_deg", angle},
-          {"femoral_shaft", json_vector3(shaft)},
-          {"source", fmt::format("the tibia's long axis against the femoral shaft (the centroids "
-                                 "of {} slices of 10 mm, {:g} to {:g} mm above the femur's "
-                                 "distal end), about the flexion axis",
-                                 centroids.size(), from_mm, from_mm + slice_mm * centroids.size())},
-          {"note", "the angles swept are counted from the built pose"}};
+  return {angle, shaft,
+          fmt::format("the tibia's long axis against the femoral shaft (the centroids of {} slices "
+                      "of 10 mm, {:g} to {:g} mm above the femur's distal end), about the flexion "
+                      "axis",
+                      centroids.size(), from_mm, from_mm + slice_mm * centroids.size()),
+          ""};
 }
 
 KneePath knee_path(const FlexionSettings& settings, const KneeAnatomy& anatomy,
-                   nlohmann::json& figures)
+                   MotionFigures& figures)
 {
   const MotionSettings& motion = settings.motion;
   const bool sided = anatomy.side_sign() != 0;
@@ -222,9 +210,9 @@ KneePath knee_path(const FlexionSettings& settings, const KneeAnatomy& anatomy,
   }
   if (sided)
     return KneePath::passive(motion.coupled_translations);
-  figures["note"] = "the knee's side is not known: pure flexion instead of the passive knee's "
-                    "coupled motion (give [anatomy] side to couple them)";
-  log_info(std::string("flexion: ") + figures["note"].get<std::string>());
+  figures.note = "the knee's side is not known: pure flexion instead of the passive knee's "
+                 "coupled motion (give [anatomy] side to couple them)";
+  log_info("flexion: " + figures.note);
   return KneePath::pure_flexion();
 }
 
@@ -280,16 +268,13 @@ KneeMotion resolve_knee_motion(const KneeModel& model, const FlexionSettings& se
     other.source = settings.axis.source == AxisSettings::Source::condyles
                        ? AxisSettings::Source::transepicondylar
                        : AxisSettings::Source::condyles;
-    nlohmann::json& entry = motion.figures["other_axis"];
-    entry["method"] = to_string(other.source);
+    OtherAxis& entry = motion.figures.other_axis.emplace();
+    entry.method = to_string(other.source);
     try {
-      const ResolvedAxis found = resolve_flexion_axis(model, other, anatomy);
-      entry["direction"] = json_vector3(found.axis.direction);
-      entry["point_mm"] = json_vector3(found.axis.point_mm);
-      entry["angle_deg"] = angle_between_deg(found.axis.direction, motion.axis.axis.direction);
-      entry["figures"] = found.figures;
+      entry.found = resolve_flexion_axis(model, other, anatomy);
+      entry.angle_deg = angle_between_deg(entry.found->axis.direction, motion.axis.axis.direction);
     } catch (const InputError& e) {
-      entry["not_available"] = e.what();
+      entry.not_available = e.what();
     }
   }
 
@@ -298,18 +283,18 @@ KneeMotion resolve_knee_motion(const KneeModel& model, const FlexionSettings& se
                        : Eigen::Vector3d(motion.axis.axis.direction.unitOrthogonal());
   motion.jcs.origin_mm = motion.axis.axis.point_mm;
   motion.jcs.flexion_axis = motion.axis.axis.direction;
-  motion.jcs.tibial_axis = tibial_axis(model, proximal, motion.figures["tibial_axis"]);
+  motion.jcs.tibial_axis = tibial_axis(model, proximal, motion.figures.tibial_axis);
   motion.jcs.side = anatomy.side_sign() < 0 ? -1 : 1;
-  motion.figures["built_pose"] = built_flexion(model, proximal, motion.jcs);
-  if (motion.figures["built_pose"].contains("flexion_deg"))
+  motion.figures.built_pose = built_flexion(model, proximal, motion.jcs);
+  if (motion.figures.built_pose.flexion_deg)
     log_info(fmt::format("flexion: the knee was built at {:.1f} degrees of flexion (its femoral "
                          "shaft against its tibia); the angles are counted from there",
-                         motion.figures["built_pose"]["flexion_deg"].get<double>()));
-  motion.figures["side"] = anatomy.side.empty() ? "not known" : anatomy.side;
-  motion.figures["frame_source"] = anatomy.frame_source;
+                         *motion.figures.built_pose.flexion_deg));
+  motion.figures.side = anatomy.side.empty() ? "not known" : anatomy.side;
+  motion.figures.frame_source = anatomy.frame_source;
 
   KneePath path = knee_path(settings, anatomy, motion.figures);
-  motion.figures["path"] = path.description();
+  motion.figures.path = path.description();
   if (path.parameter() == KneePath::Parameter::time_s) {
     if (settings.mode == FlexionMode::interactive)
       fail("flexion: a motion in time ({}) runs quasi-statically: set mode = \"static\"",

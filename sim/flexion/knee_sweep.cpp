@@ -161,19 +161,16 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
     }
     // Built with contact off as well: it measures how deep the ligament goes into the bones.
     const KneeContact contact(model, conditions, sweep.settings.contact, contact_cache);
-    sweep.setup = {{"nodes", body.node_count()},
-                   {"tets", body.element_count()},
-                   {"femur_nodes", model.femur_nodes.size()},
-                   {model.distal_bone + "_nodes", model.tibia_nodes.size()},
-                   {"rest_volume_mm3", body.rest_volume()},
-                   {"contact", contact.figures()}};
+    sweep.setup = {body.node_count(), body.element_count(),     model.femur_nodes.size(),
+                   model.distal_bone, model.tibia_nodes.size(), body.rest_volume(),
+                   contact.figures()};
     sweep.result = run_flexion_sweep(
         body, conditions, sweep.settings,
         [&](const AngleResult& angle, const HyperelasticBody& swept, const Eigen::VectorXd& x) {
           for (const std::string& warning : plausibility_warnings(angle, plausibility)) {
             log_info(fmt::format("warning at {} deg: {}{}", angle_label(angle.angle_deg),
                                  ligaments.size() > 1 ? ligament.name + ": " : "", warning));
-            sweep.warnings.push_back({{"angle_deg", angle.angle_deg}, {"warning", warning}});
+            sweep.warnings.push_back({angle.angle_deg, warning});
           }
           if (on_angle)
             on_angle(l, swept, angle, x);

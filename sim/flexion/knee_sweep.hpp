@@ -4,12 +4,11 @@
 /// other in the solve, so each is solved on its own (one ligament at a time gives each
 /// ligament's answer); ligament_pairs.hpp measures how close they come.
 
+#include "sim/flexion/knee_contact.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/flexion/knee_model.hpp"
 #include "sim/flexion/knee_motion.hpp"
 #include "sim/flexion/plausibility.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <functional>
@@ -35,15 +34,32 @@ void use_folder_material(FlexionSettings& settings);
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
                                             const FlexionSettings& settings);
 
+/// What one ligament's sweep was set up with.
+struct LigamentSetup {
+  int nodes = 0;
+  Eigen::Index tets = 0;
+  std::size_t femur_nodes = 0;
+  std::string distal_bone; ///< "tibia" or "fibula"
+  std::size_t distal_nodes = 0;
+  double rest_volume_mm3 = 0.0;
+  KneeContactFigures contact;
+};
+
+/// A plausibility warning at an angle.
+struct AngleWarning {
+  double angle_deg = 0.0;
+  std::string warning;
+};
+
 /// One ligament's sweep.
 struct LigamentSweep {
   std::string name;
   FlexionSettings settings; ///< its own (ligament_settings)
   SweepResult result;
   std::vector<Footprint> footprints;
-  std::optional<LigamentThickness> thickness;        ///< none without a centerline
-  nlohmann::json setup;                              ///< nodes, tets, volume, contact grids
-  nlohmann::json warnings = nlohmann::json::array(); ///< plausibility, per angle
+  std::optional<LigamentThickness> thickness; ///< none without a centerline
+  LigamentSetup setup;
+  std::vector<AngleWarning> warnings; ///< plausibility, per angle
 };
 
 /// Called for each angle each ligament reaches: the ligament's index, its body, the angle and

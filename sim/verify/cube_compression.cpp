@@ -36,7 +36,7 @@ std::vector<FebioCase> cube_compression_cases(const FebioReference& reference)
             std::string(direction) == "along" ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
         c.force_per_top_node_n = Eigen::Vector3d(0, 0, -load);
         c.displacements.clear();
-        c.febio = nlohmann::json::object();
+        c.febio = {};
         cases.push_back(c);
       }
   return cases;

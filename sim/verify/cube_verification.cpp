@@ -51,7 +51,7 @@ CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEner
   result.name = c.name;
   result.energy = energy;
   result.incompressibility = c.incompressibility;
-  result.febio_wall_s = c.febio.value("wall_s", 0.0);
+  result.febio_wall_s = c.febio.wall_s.value_or(0.0);
   result.load_steps = settings.load_steps;
 
   FiberField fiber(1, 3);
@@ -127,52 +127,6 @@ CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEner
     result.avg_error_all_pct = sum / body.node_count();
   }
   return result;
-}
-
-nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results)
-{
-  nlohmann::json cases = nlohmann::json::array();
-  for (const CubeCaseResult& r : results) {
-    nlohmann::json entry = {{"name", r.name},
-                            {"energy", to_string(r.energy)},
-                            {"avg_error_pct", r.avg_error_pct},
-                            {"max_error_pct", r.max_error_pct},
-                            {"avg_error_all_pct", r.avg_error_all_pct},
-                            {"max_error_all_pct", r.max_error_all_pct},
-                            {"avg_fiber_strain_pct", r.avg_fiber_strain_pct},
-                            {"volume_change_pct", r.volume_change_pct},
-                            {"wall_s", r.wall_s},
-                            {"cpu_s", r.cpu_s},
-                            {"febio_wall_s", r.febio_wall_s},
-                            {"converged", r.converged},
-                            {"incompressibility", r.incompressibility},
-                            {"avg_top_uz_mm", r.avg_top_uz_mm},
-                            {"newton_iterations", r.newton_iterations},
-                            {"factorizations", r.factorizations},
-                            {"cg_iterations", r.cg_iterations},
-                            {"load_steps", r.load_steps},
-                            {"projected_elements", r.projected_elements},
-                            {"relative_residual", r.relative_residual},
-                            {"balance_error", r.balance_error},
-                            {"substeps", r.substeps},
-                            {"cutbacks", r.cutbacks},
-                            {"saddle_iterations", r.saddle_iterations},
-                            {"converged_at_floor", r.converged_at_floor},
-                            {"negative_eigenvalues", r.negative_eigenvalues}};
-    if (r.converged_at_floor)
-      entry["floor"] = r.floor;
-    if (!r.instability.empty())
-      entry["instability"] = r.instability;
-    if (!r.converged) {
-      entry["failure"] = r.failure;
-      for (const char* key :
-           {"avg_error_pct", "max_error_pct", "avg_error_all_pct", "max_error_all_pct",
-            "avg_fiber_strain_pct", "volume_change_pct", "avg_top_uz_mm"})
-        entry[key] = nullptr;
-    }
-    cases.push_back(entry);
-  }
-  return {{"cases", cases}};
 }
 
 namespace {

@@ -5,8 +5,6 @@
 #include "sim/solver/static_solver.hpp"
 #include "sim/verify/febio_reference.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
 
@@ -72,9 +70,6 @@ BoundaryConditions cube_conditions(const FebioCase& c, const std::vector<int>& b
 CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEnergy energy,
                              const NewtonSettings& settings, const Points& reference,
                              double edge_mm, Eigen::VectorXd* x_out = nullptr);
-
-/// verify.json: {"cases": [...]} in the schema, plus our extra figures.
-nlohmann::json cube_results_json(const std::vector<CubeCaseResult>& results);
 
 /// Markdown table in the layout of the paper's Tables 1 and 2, with FEBio's wall time.
 std::string cube_results_table(const std::vector<CubeCaseResult>& results);

@@ -2,6 +2,8 @@
 
 #include "common/error.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -87,7 +89,14 @@ FebioReference read_febio_reference(const std::filesystem::path& directory)
     validate(c.material);
     c.incompressibility = field<std::string>(entry, "incompressibility", at);
     c.displacements = directory / field<std::string>(entry, "displacements", at);
-    c.febio = entry.value("febio", nlohmann::json::object());
+    if (const auto febio = entry.find("febio"); febio != entry.end() && febio->is_object()) {
+      const auto figure = [&](const char* key) -> std::optional<double> {
+        const auto value = febio->find(key);
+        return value != febio->end() && value->is_number() ? std::optional(value->get<double>())
+                                                           : std::nullopt;
+      };
+      c.febio = {figure("wall_s"), figure("avg_top_uz"), figure("volume_change_rel")};
+    }
     reference.cases.push_back(std::move(c));
   }
   return reference;

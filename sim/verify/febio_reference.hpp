@@ -6,9 +6,9 @@
 #include "sim/material/material_parameters.hpp"
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +21,13 @@ struct FebioMesh {
   std::vector<int> top_nodes;
 };
 
+/// FEBio's own figures for a case, as cases.json records them (empty where it does not).
+struct FebioFigures {
+  std::optional<double> wall_s;
+  std::optional<double> avg_top_uz_mm; ///< the top face's mean displacement along z
+  std::optional<double> volume_change_rel;
+};
+
 struct FebioCase {
   std::string name;
   Eigen::Vector3d fiber = Eigen::Vector3d::UnitZ();
@@ -29,7 +36,7 @@ struct FebioCase {
   MaterialParameters material;
   std::string incompressibility;       ///< "penalty" or "augmented_lagrangian"
   std::filesystem::path displacements; ///< absolute path of <case>.txt
-  nlohmann::json febio;                ///< FEBio's own figures (wall_s, avg_top_uz, ...)
+  FebioFigures febio;
 };
 
 struct FebioReference {

@@ -432,39 +432,6 @@ int inject_slivers(TetMesh& mesh, int count, double volume_fraction, const std::
   return made;
 }
 
-nlohmann::json flexion_stability_json(const std::vector<FlexionCaseResult>& results)
-{
-  auto number = [](double value) {
-    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json("not measured");
-  };
-  nlohmann::json cases = nlohmann::json::array();
-  for (const FlexionCaseResult& r : results) {
-    nlohmann::json angles = nlohmann::json::array();
-    for (const AngleResult& angle : r.angles)
-      angles.push_back(angle_json(angle));
-    cases.push_back(
-        {{"name", r.name},
-         {"description", r.description},
-         {"model", r.model},
-         {"tets", r.tets},
-         {"model_change", r.model_change},
-         {"outcome", to_string(r.outcome)},
-         {"diagnostic", r.diagnostic},
-         {"target_angle_deg", r.target_angle_deg},
-         {"angles_reached", r.angles.size()},
-         {"last_angle_deg",
-          r.angles.empty() ? nlohmann::json("none") : nlohmann::json(r.angles.back().angle_deg)},
-         {"iterations", r.iterations},
-         {"wall_s", r.wall_s},
-         {"max_fiber_strain", r.max_fiber_strain},
-         {"min_j", number(r.min_j)},
-         {"equilibrium_residual", number(r.equilibrium_residual)},
-         {"non_finite", r.non_finite},
-         {"angles", angles}});
-  }
-  return {{"cases", cases}};
-}
-
 namespace {
 
 std::string reached(const FlexionCaseResult& r)

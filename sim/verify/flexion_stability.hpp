@@ -9,8 +9,6 @@
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/verify/stability.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -83,7 +81,6 @@ std::optional<std::string> first_non_finite_value(const std::filesystem::path& d
 /// other element inverts. Returns how many became slivers.
 int inject_slivers(TetMesh& mesh, int count, double volume_fraction, const std::vector<int>& fixed);
 
-nlohmann::json flexion_stability_json(const std::vector<FlexionCaseResult>& results);
 /// case, outcome, iterations, time, max fiber strain, diagnostic (markdown).
 std::string flexion_stability_table(const std::vector<FlexionCaseResult>& results);
 std::string flexion_stability_csv(const std::vector<FlexionCaseResult>& results);

@@ -244,23 +244,6 @@ StabilityResult run_stability_case(const std::string& name, int cells)
   fail("unknown stability case '{}'", name);
 }
 
-nlohmann::json stability_json(const std::vector<StabilityResult>& results)
-{
-  nlohmann::json cases = nlohmann::json::array();
-  for (const StabilityResult& r : results)
-    cases.push_back({{"name", r.name},
-                     {"description", r.description},
-                     {"outcome", to_string(r.outcome)},
-                     {"converged", r.converged},
-                     {"diagnostic", r.diagnostic},
-                     {"iterations", r.iterations},
-                     {"wall_s", r.wall_s},
-                     {"min_j", std::isfinite(r.min_j) ? nlohmann::json(r.min_j) : nullptr},
-                     {"balance_error", r.balance_error},
-                     {"max_displacement_mm", r.max_displacement_mm}});
-  return {{"cases", cases}};
-}
-
 std::string stability_table(const std::vector<StabilityResult>& results)
 {
   std::string table = "| case | set-up | outcome | iterations / frames | wall s | worst J | max "

@@ -7,7 +7,6 @@
 #include "sim/verify/outcome.hpp"
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
 
 #include <string>
 #include <vector>
@@ -47,7 +46,6 @@ std::vector<StabilityCase> stability_cases();
 /// hexes).
 StabilityResult run_stability_case(const std::string& name, int cells = 8);
 
-nlohmann::json stability_json(const std::vector<StabilityResult>& results);
 std::string stability_table(const std::vector<StabilityResult>& results);
 
 } // namespace ligsim::sim

@@ -1,11 +1,12 @@
 /// A step's report as JSON: each counter under its own name (the indefinite and the saddle
 /// iterations were once written under one key).
 
-#include "sim/solver/step_report_json.hpp"
+#include "pipeline/reports/step_report_json.hpp"
 
 #include <gtest/gtest.h>
 
-using namespace ligsim::sim;
+using ligsim::reports::to_json;
+using ligsim::sim::StepReport;
 
 TEST(StepReportJson, EachFigureIsWrittenUnderItsOwnName)
 {

@@ -133,7 +133,7 @@ TEST(KneeMotion, PathsAndWhatTheyNeed)
   EXPECT_THROW(resolve_knee_motion(model, settings), InputError); // the coupling needs the side
   settings.motion.path = MotionSettings::Path::automatic;
   const KneeMotion pure = resolve_knee_motion(model, settings);
-  EXPECT_NE(pure.figures.value("note", "").find("side is not known"), std::string::npos);
+  EXPECT_NE(pure.figures.note.find("side is not known"), std::string::npos);
   EXPECT_NEAR(joint_pose(pure.jcs, pure.femur_path->pose(1.0)).internal_rotation_deg, 0.0, 1e-9);
 
   settings.anatomy.side = "right";
@@ -142,7 +142,7 @@ TEST(KneeMotion, PathsAndWhatTheyNeed)
   EXPECT_NEAR(at90.flexion_deg, 90.0, 1e-9);
   EXPECT_NEAR(at90.internal_rotation_deg, 14.88, 0.01); // Walker et al. 1988
   EXPECT_EQ(passive.load_factors, (std::vector<double>{0.0, 0.5, 1.0}));
-  EXPECT_EQ(passive.figures["tibial_axis"]["source"], "principal axis of the tibia");
+  EXPECT_EQ(passive.figures.tibial_axis.source, "principal axis of the tibia");
 
   // A motion in time: its rows are the steps.
   const fs::path csv = fs::temp_directory_path() / "ligsim_knee_motion_time.csv";
@@ -454,21 +454,21 @@ TEST(KneeMotion, TheBuiltPoseIsMeasuredAsTheFemoralShaftAgainstTheTibia)
   };
   model.femur = femur_of(250.0, Eigen::Isometry3d::Identity());
   const KneeMotion straight = resolve_knee_motion(model, settings);
-  EXPECT_NEAR(straight.figures["built_pose"]["flexion_deg"].get<double>(), 0.0, 0.2);
+  EXPECT_NEAR(straight.figures.built_pose.flexion_deg.value(), 0.0, 0.2);
 
   const JointCoordinateSystem& jcs = straight.jcs;
   const Eigen::Isometry3d flexed = Eigen::Translation3d(jcs.origin_mm) *
                                    Eigen::AngleAxisd(10.0 * M_PI / 180.0, jcs.flexion_axis) *
                                    Eigen::Translation3d(-jcs.origin_mm);
   model.femur = femur_of(250.0, flexed);
-  const nlohmann::json built = resolve_knee_motion(model, settings).figures["built_pose"];
-  EXPECT_NEAR(built["flexion_deg"].get<double>(), 10.0, 0.3) << built.dump();
+  const BuiltPose built = resolve_knee_motion(model, settings).figures.built_pose;
+  EXPECT_NEAR(built.flexion_deg.value(), 10.0, 0.3) << built.not_measured;
 
   model.femur = femur_of(80.0, Eigen::Isometry3d::Identity());
-  const nlohmann::json short_femur = resolve_knee_motion(model, settings).figures["built_pose"];
-  EXPECT_FALSE(short_femur.contains("flexion_deg"));
-  EXPECT_NE(short_femur["not_measured"].get<std::string>().find("reaches 80 mm"), std::string::npos)
-      << short_femur.dump();
+  const BuiltPose short_femur = resolve_knee_motion(model, settings).figures.built_pose;
+  EXPECT_FALSE(short_femur.flexion_deg.has_value());
+  EXPECT_NE(short_femur.not_measured.find("reaches 80 mm"), std::string::npos)
+      << short_femur.not_measured;
 }
 
 TEST(KneeMotion, APoseTableReproducesTheRigidMotionItWasMadeFrom)

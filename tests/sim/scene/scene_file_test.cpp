@@ -1,8 +1,8 @@
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "pipeline/scenes/scene_runner.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim/scene/scene_runner.hpp"
 
 #include <gtest/gtest.h>
 #include <vtkCellArray.h>
@@ -195,7 +195,7 @@ TEST(SceneFile, PipelineModelWithInSituStrainIsInEquilibriumBetweenItsAttachment
 
   const fs::path out = directory / "out";
   ligsim::RunSummary summary("simulate");
-  const SceneRunReport report = run_scene(scene, out, summary);
+  const ligsim::scenes::SceneRunReport report = ligsim::scenes::run_scene(scene, out, summary);
   ASSERT_TRUE(report.success) << report.failure;
   EXPECT_TRUE(fs::exists(out / "series.pvd"));
   EXPECT_TRUE(fs::exists(out / "step_0002.vtu"));

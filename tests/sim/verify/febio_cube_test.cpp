@@ -45,25 +45,12 @@ TEST_P(FebioCube, MatchedEnergyReproducesFebio)
   EXPECT_LT(result.max_error_pct, 0.05);
   EXPECT_LT(result.max_error_all_pct, 0.05);
   // FEBio's own figures for the same solution.
-  EXPECT_NEAR(result.avg_top_uz_mm, c.febio["avg_top_uz"].get<double>(), 1e-6);
-  EXPECT_NEAR(result.volume_change_pct, 100 * c.febio["volume_change_rel"].get<double>(), 1e-3);
+  EXPECT_NEAR(result.avg_top_uz_mm, c.febio.avg_top_uz_mm.value(), 1e-6);
+  EXPECT_NEAR(result.volume_change_pct, 100 * c.febio.volume_change_rel.value(), 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(SmallestAndLargestLoad, FebioCube,
                          ::testing::Values("par_t002_pen", "par_t020_abq"));
-
-TEST(FebioReference, VerifyJsonHasTheIssueSchema)
-{
-  CubeCaseResult result;
-  result.name = "x";
-  result.converged = true;
-  const nlohmann::json json = cube_results_json({result});
-  for (const char* key :
-       {"name", "energy", "avg_error_pct", "max_error_pct", "avg_error_all_pct",
-        "max_error_all_pct", "avg_fiber_strain_pct", "volume_change_pct", "wall_s", "febio_wall_s"})
-    EXPECT_TRUE(json["cases"][0].contains(key)) << key;
-  EXPECT_EQ(json["cases"][0]["energy"], "matched");
-}
 
 TEST(FebioReference, MissingFilesAreClearErrors)
 {

@@ -33,7 +33,7 @@ TEST(CubeSweep, FebioPointSitsAtItsRecordedTimeAndOurErrorAt16Cells)
   }
   ASSERT_NE(febio, nullptr);
   ASSERT_NE(ours, nullptr);
-  EXPECT_DOUBLE_EQ(febio->wall_s, c->febio["wall_s"].get<double>());
+  EXPECT_DOUBLE_EQ(febio->wall_s, c->febio.wall_s.value());
   EXPECT_EQ(febio->elements, 16 * 16 * 16 * 5);
   EXPECT_EQ(febio->elements, ours->elements);
   // Our 16^3 solution equals FEBio's to 1e-7 % of the edge, so both are as far from the finest.
