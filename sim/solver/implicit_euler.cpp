@@ -64,7 +64,6 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
 
 void ImplicitEuler::set_extra_potential(const ExtraPotential* potential)
 {
-  m_extra = potential;
   m_engine.set_extra_potential(potential);
 }
 
@@ -73,8 +72,8 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
 {
   // Prescribed DOFs jump to their targets; the step starts there with the free nodes unmoved.
   m_dofs.apply_targets(m_conditions, m_body.mesh().V, t, x);
-  if (m_extra)
-    m_extra->make_admissible(x, t);
+  if (const ExtraPotential* extra = m_engine.extra_potential())
+    extra->make_admissible(x, t);
 
   // The step minimises (1 + h alpha) / (2 h^2) |x - x_s - h v_s / (1 + h alpha)|_M^2 + W(x) -
   // t f.x + extra + beta / (2 h) (x - x_s)^T K_s (x - x_s): its stationarity is implicit

@@ -137,7 +137,6 @@ private:
   bool m_step_met = true;      ///< the last step's equation held to iteration_tolerance
   bool m_last_halving = false; ///< the frame's sub-steps cannot be halved again
   std::string m_failure;
-  const ExtraPotential* m_extra = nullptr;
 };
 
 } // namespace ligsim::sim

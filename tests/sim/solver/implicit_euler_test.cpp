@@ -180,3 +180,45 @@ TEST(ImplicitEuler, ASolveIndefiniteWithTheExactExtraBlocksIsRetriedWithTheirPro
   EXPECT_LT((projected - plain).lpNorm<Eigen::Infinity>(), 1e-6 * moved);
   EXPECT_LT((halved - plain).lpNorm<Eigen::Infinity>(), 1e-6 * moved);
 }
+
+TEST(ImplicitEuler, StiffnessDampingRelaxesTheCubeAsKelvinVoigtDoes)
+{
+  // Rayleigh's beta K v as a dissipation potential. The 1 mm cube's inertia is negligible at
+  // these time steps (its period is about 1e-6 s), so the motion is K beta v = f - K u: the
+  // distance to equilibrium falls as exp(-t / beta), and by backward Euler's factor
+  // 1 / (1 + h / beta) per frame. Without beta it is there within a few frames.
+  const Cube cube;
+  const HyperelasticBody body(cube.mesh, mcl_material(), along_z());
+  StaticSolver quasi_static(body, cube.conditions, NewtonSettings{});
+  Eigen::VectorXd x_static = body.rest_positions();
+  ASSERT_TRUE(quasi_static.solve(x_static).converged);
+  const double h = 1e-5, beta = 1e-4;
+  const auto run = [&](double damping, std::vector<double>& distance) {
+    DynamicsSettings settings;
+    settings.time_step_s = h;
+    settings.frames = 400;
+    settings.until_converged = true;
+    settings.convergence_tolerance = 1e-8;
+    settings.stiffness_damping_s = damping;
+    settings.linear_solver = LinearSolverKind::direct;
+    settings.max_iterations = 8;
+    settings.iteration_tolerance = 1e-10;
+    ImplicitEuler solver(body, cube.conditions, settings);
+    Eigen::VectorXd x = body.rest_positions();
+    const DynamicResult result = solver.run(
+        x, [&](const FrameReport&, const Eigen::VectorXd& state, const Eigen::VectorXd&) {
+          distance.push_back((state - x_static).lpNorm<Eigen::Infinity>());
+        });
+    EXPECT_TRUE(result.completed) << "beta " << damping << ": " << result.failure;
+    EXPECT_LT((x - x_static).lpNorm<Eigen::Infinity>(), 1e-7) << "beta " << damping;
+  };
+  std::vector<double> undamped, damped;
+  run(0.0, undamped);
+  run(beta, damped);
+  EXPECT_LE(undamped.size(), 10u);
+  ASSERT_GT(damped.size(), 100u);
+  // Near equilibrium, where the material is linear to 1e-4 over the remaining distance.
+  const double factor = 1.0 / (1.0 + h / beta);
+  for (std::size_t frame = 50; frame <= 100; frame += 10)
+    EXPECT_NEAR(damped[frame + 1] / damped[frame], factor, 5e-4 * factor) << "frame " << frame;
+}
