@@ -49,17 +49,4 @@ private:
   std::string m_message;
 };
 
-/// A ParaView collection file: (time, file relative to the .pvd) pairs.
-void write_pvd(const std::filesystem::path& file,
-               const std::vector<std::pair<double, std::string>>& steps);
-
-/// One file of a collection; files of the same time with different parts are shown together
-/// (a ligament and its bones).
-struct PvdDataSet {
-  double time = 0.0;
-  int part = 0;
-  std::string file; ///< relative to the .pvd
-};
-void write_pvd(const std::filesystem::path& file, const std::vector<PvdDataSet>& data_sets);
-
 } // namespace ligsim

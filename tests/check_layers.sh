@@ -2,8 +2,9 @@
 # Fails, naming the files, if the core (common/, stages/, sim/) reaches for rendering or a display:
 # a header of one of VTK's rendering modules, an X server, or the rendering libraries in its
 # CMake files. Pictures and windows belong to pipeline/render and pipeline/view. Also fails where
-# a header of sim/ includes nlohmann/json: results are typed there and written as JSON in
-# pipeline/reports.
+# a header of sim/ includes nlohmann/json (results are typed there and written as JSON in
+# pipeline/reports) or VTK (the simulator's types are its own: bones are TriangleSurface; VTK
+# data sets are built in its .cpp files, where it writes them, and at the edge).
 # Arguments: the hierarchy files of VTK's rendering modules.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -33,6 +34,12 @@ fi
 if found=$(find sim -name '*.hpp' -print0 | xargs -0 grep -nE '#include[[:space:]]*<nlohmann/'); then
   echo "a simulator header includes nlohmann/json (type the result in sim/, write its JSON in" >&2
   echo "pipeline/reports):" >&2
+  echo "$found" >&2
+  status=1
+fi
+if found=$(find sim -name '*.hpp' -print0 | xargs -0 grep -nE '#include[[:space:]]*<vtk|^class vtk'); then
+  echo "a simulator header includes or declares VTK (keep VTK in the .cpp files; give the header" >&2
+  echo "the project's own types):" >&2
   echo "$found" >&2
   status=1
 fi

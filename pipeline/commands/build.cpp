@@ -19,6 +19,7 @@
 #include "stages/io/vtk_convert.hpp"
 
 #include <CLI/CLI.hpp>
+#include <vtkPolyData.h>
 
 #include <cmath>
 #include <memory>

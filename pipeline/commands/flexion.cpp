@@ -303,11 +303,11 @@ void run_flexion(const FlexionJobOptions& options)
       ligaments, motion, settings, settings.model_dir / "contact",
       [&](std::size_t l, const sim::HyperelasticBody& body, const sim::AngleResult& angle,
           const Eigen::VectorXd& x) {
-        const auto grid = output.write_angle(l, body, angle, x);
+        const fs::path written = output.write_angle(l, body, angle, x);
         if (settings.images) {
-          knee_pictures.keep(l, angle, grid);
+          knee_pictures.keep(l, angle, written);
           if (ligament_pictures)
-            ligament_pictures->keep(angle, x, grid);
+            ligament_pictures->keep(angle, x, written);
         }
         if (ligaments.size() > 1) {
           states[angle.angle_deg].resize(ligaments.size());

@@ -3,11 +3,12 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/pvd_file.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
 #include "common/vtk_files.hpp"
-#include "sim/membrane/output/membrane_frame.hpp"
-#include "sim/membrane/output/render_frame.hpp"
+#include "pipeline/render/membrane_frame.hpp"
+#include "pipeline/render/tear_frame_picture.hpp"
 #include "sim/membrane/output/tear_path.hpp"
 #include "sim/membrane/scene/scene.hpp"
 #include "sim/membrane/scene/tear_metrics.hpp"
@@ -54,14 +55,14 @@ double median(std::vector<double> values)
 
 /// Writes frame `index` (VTU, and PNG unless disabled); returns the VTU's name.
 std::string write_frame(const TearSimulation& simulation, const TearOptions& options,
-                        const FrameView& view, int index)
+                        const render::FrameView& view, int index)
 {
   const std::vector<double> criterion =
       simulation.tearing().element_criterion(simulation.mesh(), simulation.elements());
   const std::string name = fmt::format("frame_{:05d}", index);
-  write_vtk(membrane_frame(simulation, criterion), options.out / (name + ".vtu"));
+  write_vtk(render::membrane_frame(simulation, criterion), options.out / (name + ".vtu"));
   if (!options.no_png)
-    render_frame(simulation, criterion, view).write_png(options.out / (name + ".png"));
+    render::render_frame(simulation, criterion, view).write_png(options.out / (name + ".png"));
   return name + ".vtu";
 }
 
@@ -135,7 +136,7 @@ void run_tear(const TearOptions& options)
   summary.add_stage("setup", setup_meter, {{"elements", simulation.mesh().triangle_count()}});
 
   ensure_directory(options.out);
-  const FrameView view = frame_view(simulation.mesh(), options.png_size);
+  const render::FrameView view = render::frame_view(simulation.mesh(), options.png_size);
   std::vector<std::pair<double, std::string>> frames;
   StageMeter run_meter;
   double output_s = 0.0;

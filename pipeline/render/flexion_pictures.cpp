@@ -4,6 +4,9 @@
 #include "pipeline/render/line_plot_picture.hpp"
 #include "pipeline/render/offscreen_display.hpp"
 
+#include "common/vtk_files.hpp"
+#include "stages/io/vtk_convert.hpp"
+
 #include <Eigen/Geometry>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
@@ -69,13 +72,13 @@ FlexionPictures::FlexionPictures(const sim::KneeModel& model, const sim::Flexion
 }
 
 void FlexionPictures::keep(const sim::AngleResult& angle, const Eigen::VectorXd& x,
-                           vtkSmartPointer<vtkUnstructuredGrid> ligament)
+                           const fs::path& ligament)
 {
   for (double wanted : m_angles)
     if (std::abs(wanted - angle.angle_deg) < 1e-9) {
       m_states[angle.angle_deg] = x;
       m_load_factors[angle.angle_deg] = angle.load_factor;
-      m_grids[angle.angle_deg] = ligament;
+      m_grids[angle.angle_deg] = read_vtu(ligament);
       std::vector<Eigen::Vector3d>& touching = m_contacts[angle.angle_deg];
       for (Eigen::Index n = 0; n < angle.pressure_mpa.size(); ++n)
         if (angle.pressure_mpa(n) > 0.0)
@@ -97,10 +100,12 @@ std::vector<fs::path> FlexionPictures::render(const std::vector<sim::AngleResult
   if (!m_states.empty()) {
     const PictureCamera camera =
         sweep_camera(m_model, m_axis, m_states, picture.width, picture.height);
+    const vtkSmartPointer<vtkPolyData> tibia = io::to_polydata(*m_model.tibia);
     for (const auto& [angle, grid] : m_grids) {
-      const vtkSmartPointer<vtkPolyData> femur = m_output.moved_femur(m_load_factors.at(angle));
+      const vtkSmartPointer<vtkPolyData> femur =
+          io::to_polydata(m_output.moved_femur(m_load_factors.at(angle)));
       picture.ligament = grid;
-      picture.bones = {femur, m_model.tibia};
+      picture.bones = {femur, tibia};
       picture.caption = "flexion " + sim::angle_label(angle) + " deg";
       picture.contact_points_mm = m_contacts.at(angle);
       const fs::path png = m_directory / ("ligament_" + sim::angle_label(angle) + ".png");

@@ -23,10 +23,10 @@ public:
                   const sim::FlexionAxis& axis, std::vector<double> angles_deg,
                   std::filesystem::path directory);
 
-  /// Keeps the state and the ligament as written (sim::FlexionOutput::write_angle) if `angle` is
-  /// one to draw.
+  /// Keeps the state, and the ligament as written in `ligament` (the file
+  /// sim::FlexionOutput::write_angle returns), if `angle` is one to draw.
   void keep(const sim::AngleResult& angle, const Eigen::VectorXd& x,
-            vtkSmartPointer<vtkUnstructuredGrid> ligament);
+            const std::filesystem::path& ligament);
 
   /// Renders ligament_<angle>.png for the kept states and strain_energy.png for the sweep;
   /// returns the files written. Starts a private X server when there is no display.

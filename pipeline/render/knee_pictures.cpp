@@ -3,6 +3,9 @@
 #include "pipeline/render/knee_picture.hpp"
 #include "pipeline/render/offscreen_display.hpp"
 
+#include "common/vtk_files.hpp"
+#include "stages/io/vtk_convert.hpp"
+
 #include <Eigen/Geometry>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -72,13 +75,13 @@ KneePictures::KneePictures(const sim::KneeModel& bones, const sim::FlexionOutput
 }
 
 void KneePictures::keep(std::size_t ligament, const sim::AngleResult& angle,
-                        vtkSmartPointer<vtkUnstructuredGrid> grid)
+                        const fs::path& written)
 {
   for (double wanted : m_angles)
     if (std::abs(wanted - angle.angle_deg) < 1e-9) {
       auto& grids = m_grids[angle.angle_deg];
       grids.resize(m_names.size());
-      grids.at(ligament) = grid;
+      grids.at(ligament) = read_vtu(written);
       m_load_factors[angle.angle_deg] = angle.load_factor;
     }
 }
@@ -126,12 +129,16 @@ std::vector<fs::path> KneePictures::render() const
 
   OffscreenDisplay display;
   std::vector<fs::path> written;
+  const vtkSmartPointer<vtkPolyData> tibia = io::to_polydata(*m_bones.tibia);
+  const vtkSmartPointer<vtkPolyData> fibula =
+      m_bones.fibula ? io::to_polydata(*m_bones.fibula) : nullptr;
   for (const auto& [angle, grids] : complete) {
-    const vtkSmartPointer<vtkPolyData> femur = m_output.moved_femur(m_load_factors.at(angle));
+    const vtkSmartPointer<vtkPolyData> femur =
+        io::to_polydata(m_output.moved_femur(m_load_factors.at(angle)));
     picture.ligaments = grids;
-    picture.bones = {femur, m_bones.tibia};
-    if (m_bones.fibula)
-      picture.bones.push_back(m_bones.fibula);
+    picture.bones = {femur, tibia};
+    if (fibula)
+      picture.bones.push_back(fibula);
     for (const View& view : views) {
       picture.caption = "flexion " + sim::angle_label(angle) + " deg, " + view.caption;
       const fs::path png =

@@ -26,9 +26,10 @@ public:
                const sim::FlexionAxis& axis, std::vector<std::string> names,
                std::vector<double> angles_deg, std::filesystem::path directory);
 
-  /// Keeps ligament `ligament`'s state as written if `angle` is one to draw.
+  /// Keeps ligament `ligament`'s state as written in `written` (the file
+  /// sim::FlexionOutput::write_angle returns) if `angle` is one to draw.
   void keep(std::size_t ligament, const sim::AngleResult& angle,
-            vtkSmartPointer<vtkUnstructuredGrid> grid);
+            const std::filesystem::path& written);
 
   /// Renders the kept angles (those every ligament reached); returns the files written.
   std::vector<std::filesystem::path> render() const;

@@ -4,9 +4,11 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "common/pvd_file.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/render/picture_parts.hpp"
 #include "pipeline/render/window_png.hpp"
+#include "stages/io/vtk_convert.hpp"
 
 #include <X11/Xlib.h>
 #include <fmt/format.h>
@@ -319,10 +321,10 @@ LiveWindow::LiveWindow(sim::LiveKnee& knee, const sim::KneeModel& bones,
   s.window->SetWindowName("ligsim view");
   s.renderer = render::add_white_renderer(s.window);
   s.renderer->UseFXAAOff(); // a full-screen pass per frame: a tenth of a frame on llvmpipe
-  s.bones_shown.push_back(for_display(bones.femur));
-  s.bones_shown.push_back(for_display(bones.tibia));
+  s.bones_shown.push_back(for_display(io::to_polydata(*bones.femur)));
+  s.bones_shown.push_back(for_display(io::to_polydata(*bones.tibia)));
   if (bones.fibula)
-    s.bones_shown.push_back(for_display(bones.fibula));
+    s.bones_shown.push_back(for_display(io::to_polydata(*bones.fibula)));
   s.femur = render::add_bone(s.renderer, s.bones_shown[0], 1.0);
   for (std::size_t b = 1; b < s.bones_shown.size(); ++b)
     render::add_bone(s.renderer, s.bones_shown[b], 1.0);

@@ -3,10 +3,10 @@
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
 #include "common/progress.hpp"
+#include "pipeline/render/membrane_frame.hpp"
 #include "pipeline/render/picture_parts.hpp"
 #include "pipeline/render/window_png.hpp"
 #include "pipeline/view/view_style.hpp"
-#include "sim/membrane/output/membrane_frame.hpp"
 #include "sim/membrane/output/tear_path.hpp"
 
 #include <fmt/format.h>
@@ -89,7 +89,7 @@ struct Player {
   void show()
   {
     const membrane::TearMetrics& metrics = simulation.metrics();
-    mapper->SetInputData(membrane::membrane_frame(
+    mapper->SetInputData(render::membrane_frame(
         simulation,
         simulation.tearing().element_criterion(simulation.mesh(), simulation.elements())));
     const double wall =

@@ -2,14 +2,11 @@
 /// @brief How deep points lie inside a bone's triangles, independently of its contact grid:
 /// inside by the generalized winding number (|w| >= 1/2: right on several shells, flipped shells
 /// and small holes, where the sign of the nearest triangle's normal is not), depth the distance
-/// to the nearest triangle (VTK's vtkImplicitPolyDataDistance, unsigned).
+/// to the nearest triangle.
 
 #include "common/mesh.hpp"
+#include "sim/contact/triangle_distance.hpp"
 #include "sim/contact/winding_number.hpp"
-
-#include <vtkSmartPointer.h>
-
-class vtkImplicitPolyDataDistance;
 
 namespace ligsim::sim {
 
@@ -17,9 +14,6 @@ class BonePenetration {
 public:
   /// `bone`: triangles, mm (kept).
   explicit BonePenetration(const TriangleSurface& bone);
-  ~BonePenetration();
-  BonePenetration(const BonePenetration&) = delete;
-  BonePenetration& operator=(const BonePenetration&) = delete;
 
   /// 0 for a point outside the bone (no work outside its bounding box), else its distance to
   /// the bone's triangles, mm.
@@ -27,7 +21,7 @@ public:
 
 private:
   WindingNumber m_winding;
-  vtkSmartPointer<vtkImplicitPolyDataDistance> m_distance;
+  TriangleDistance m_distance;
 };
 
 } // namespace ligsim::sim

@@ -81,7 +81,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
 
   FebRigidBody femur;
   femur.name = "femur";
-  femur.surface = triangle_surface(model.femur, "femur.vtp");
+  femur.surface = *model.femur;
   femur.center_mm = center_mm;
   femur.attached_nodes = model.femur_nodes;
   femur.poses = femur_poses(conditions, steps);
@@ -92,7 +92,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   femur.contact = problem.contact && in_contact(settings.contact, "femur");
   FebRigidBody tibia;
   tibia.name = "tibia";
-  tibia.surface = triangle_surface(model.tibia, "tibia.vtp");
+  tibia.surface = *model.tibia;
   tibia.center_mm = tibia.surface.V.colwise().mean().transpose();
   tibia.attached_nodes = model.tibia_nodes;
   tibia.contact = problem.contact && in_contact(settings.contact, "tibia");

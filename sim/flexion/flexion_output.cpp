@@ -4,9 +4,9 @@
 #include "common/run_summary.hpp"
 #include "common/svg_plot.hpp"
 #include "common/vtk_files.hpp"
+#include "stages/io/vtk_convert.hpp"
 
 #include <fmt/format.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <cmath>
@@ -37,9 +37,9 @@ FlexionOutput::FlexionOutput(std::vector<OutputLigament> ligaments, const KneeMo
     , m_femur(std::move(femur))
     , m_directory(std::move(directory))
 {
-  write_vtk(m_tibia, m_directory / "tibia.vtp");
+  write_vtk(io::to_polydata(*m_tibia), m_directory / "tibia.vtp");
   if (m_fibula)
-    write_vtk(m_fibula, m_directory / "fibula.vtp");
+    write_vtk(io::to_polydata(*m_fibula), m_directory / "fibula.vtp");
   for (const OutputLigament& ligament : m_ligaments)
     if (!ligament.folder.empty())
       ensure_directory(m_directory / ligament.folder);
@@ -53,31 +53,21 @@ FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& mode
   m_body = &body;
 }
 
-vtkSmartPointer<vtkPolyData> FlexionOutput::moved_femur(double load_factor) const
+TriangleSurface FlexionOutput::moved_femur(double load_factor) const
 {
   const Eigen::Isometry3d pose = m_femur.pose(load_factor);
-  auto femur = vtkSmartPointer<vtkPolyData>::New();
-  femur->DeepCopy(m_femur_surface);
-  vtkPoints* points = femur->GetPoints();
-  for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p) {
-    double xyz[3];
-    points->GetPoint(p, xyz);
-    const Eigen::Vector3d turned = pose * Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-    points->SetPoint(p, turned.x(), turned.y(), turned.z());
-  }
+  TriangleSurface femur = *m_femur_surface;
+  femur.V = (femur.V * pose.linear().transpose()).rowwise() + pose.translation().transpose();
   return femur;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(const AngleResult& angle,
-                                                                const Eigen::VectorXd& x)
+fs::path FlexionOutput::write_angle(const AngleResult& angle, const Eigen::VectorXd& x)
 {
   return write_angle(0, *m_body, angle, x);
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(std::size_t ligament,
-                                                                const HyperelasticBody& body,
-                                                                const AngleResult& angle,
-                                                                const Eigen::VectorXd& x)
+fs::path FlexionOutput::write_angle(std::size_t ligament, const HyperelasticBody& body,
+                                    const AngleResult& angle, const Eigen::VectorXd& x)
 {
   const std::string label = step_label(angle);
   const fs::path folder = m_ligaments.at(ligament).folder;
@@ -85,20 +75,20 @@ vtkSmartPointer<vtkUnstructuredGrid> FlexionOutput::write_angle(std::size_t liga
   PointArrays contact;
   if (angle.gap_mm.size() > 0)
     contact = {{"gap_mm", angle.gap_mm}, {"contact_pressure", angle.pressure_mpa}};
-  auto grid = SceneOutput(body, m_directory).write(file, angle.angle_deg, x, contact);
+  const fs::path written = SceneOutput(body, m_directory).write(file, angle.angle_deg, x, contact);
   // ParaView's time: the angle, or the time of a motion in time.
   const double time = std::isnan(angle.time_s) ? angle.angle_deg : angle.time_s;
   m_series.push_back({time, static_cast<int>(ligament), file});
   const std::string femur = "femur_" + label + ".vtp";
   if (m_femurs_written.insert(femur).second) {
-    write_vtk(moved_femur(angle.load_factor), m_directory / femur);
+    write_vtk(io::to_polydata(moved_femur(angle.load_factor)), m_directory / femur);
     const int bones = static_cast<int>(m_ligaments.size());
     m_series.push_back({time, bones, femur});
     m_series.push_back({time, bones + 1, "tibia.vtp"});
     if (m_fibula)
       m_series.push_back({time, bones + 2, "fibula.vtp"});
   }
-  return grid;
+  return written;
 }
 
 void FlexionOutput::finish(const std::vector<AngleResult>& angles) const

@@ -4,11 +4,9 @@
 /// fibula once (tibia.vtp, fibula.vtp), one flexion.pvd showing them together in ParaView, the
 /// table flexion.csv (a row per ligament and angle) and strain_energy.svg (energy against angle).
 
-#include "common/vtk_files.hpp"
+#include "common/pvd_file.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/scene/scene_output.hpp"
-
-#include <vtkUnstructuredGrid.h>
 
 #include <filesystem>
 #include <set>
@@ -40,14 +38,11 @@ public:
                 std::filesystem::path directory);
 
   /// Writes ligament `ligament`'s state at the angle (ligament_<angle>.vtu in its folder) and the
-  /// femur at the angle if not yet written; returns the ligament as written (for the pictures).
-  vtkSmartPointer<vtkUnstructuredGrid> write_angle(std::size_t ligament,
-                                                   const HyperelasticBody& body,
-                                                   const AngleResult& angle,
-                                                   const Eigen::VectorXd& x);
+  /// femur at the angle if not yet written; returns the ligament's file (for the pictures).
+  std::filesystem::path write_angle(std::size_t ligament, const HyperelasticBody& body,
+                                    const AngleResult& angle, const Eigen::VectorXd& x);
   /// The same for the one body of the second constructor.
-  vtkSmartPointer<vtkUnstructuredGrid> write_angle(const AngleResult& angle,
-                                                   const Eigen::VectorXd& x);
+  std::filesystem::path write_angle(const AngleResult& angle, const Eigen::VectorXd& x);
   /// Writes flexion.pvd for the angles written so far, and flexion.csv (a row per ligament and
   /// angle) and strain_energy.svg for `angles`, one list per ligament.
   void finish(const std::vector<std::vector<AngleResult>>& angles) const;
@@ -55,12 +50,12 @@ public:
   void finish(const std::vector<AngleResult>& angles) const;
 
   /// The femur surface in its pose at load factor t.
-  vtkSmartPointer<vtkPolyData> moved_femur(double load_factor) const;
+  TriangleSurface moved_femur(double load_factor) const;
 
 private:
   std::vector<OutputLigament> m_ligaments;
   const HyperelasticBody* m_body = nullptr; ///< the one body of the second constructor
-  vtkSmartPointer<vtkPolyData> m_femur_surface, m_tibia, m_fibula;
+  BoneSurface m_femur_surface, m_tibia, m_fibula;
   RigidMotion m_femur;
   std::filesystem::path m_directory;
   std::vector<PvdDataSet> m_series;

@@ -71,15 +71,15 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
   std::unique_ptr<ArticularContact> articular;
   const KneeModel& model = ligaments.front().model;
   if (settings.free.articular_contact) {
-    const TriangleSurface tibia_surface = triangle_surface(model.tibia, "tibia.vtp");
+    const TriangleSurface& tibia_surface = *model.tibia;
     // A wide band: a trial pose may press the femur millimetres into the tibia, and the
     // foundation must see how deep to push it back (the ligaments' 1 mm band would not).
     LevelSetSettings grid;
     grid.voxel_mm = 0.5;
     grid.band_mm = 8.0;
     tibia = BoneLevelSet::cached(tibia_surface, grid, contact_cache / "tibia_articular.vdb");
-    articular = std::make_unique<ArticularContact>(triangle_surface(model.femur, "femur.vtp"),
-                                                   *tibia, motion.jcs, settings.free.articular);
+    articular = std::make_unique<ArticularContact>(*model.femur, *tibia, motion.jcs,
+                                                   settings.free.articular);
     free.seat = articular->seat();
   }
   free.found = find_free_path(held, articular.get(), motion.jcs, motion.angles_deg, settings.free);

@@ -50,11 +50,10 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
   for (const std::string& name : names) {
     auto bone = std::make_unique<Bone>();
     bone->name = name;
-    vtkPolyData* surface = bone_of(model, name);
-    if (surface == nullptr)
+    const TriangleSurface* triangles = bone_of(model, name);
+    if (triangles == nullptr)
       fail("contact with the {}: the model has no {} surface", name, name);
-    const TriangleSurface triangles = triangle_surface(surface, name + ".vtp");
-    bone->grid = BoneLevelSet::cached(triangles, config.grid, cache_dir / (name + ".vdb"));
+    bone->grid = BoneLevelSet::cached(*triangles, config.grid, cache_dir / (name + ".vdb"));
     for (const ConstraintSet& set : conditions.constraints)
       if (set.name == name)
         bone->motion = set.rigid;
@@ -66,10 +65,10 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;
-    bone->penetration = std::make_unique<BonePenetration>(triangles);
+    bone->penetration = std::make_unique<BonePenetration>(*triangles);
     const LevelSetFigures& grid = bone->grid->figures();
     m_figures.bones.push_back({name, cache_dir / (name + ".vdb"), bone->grid->figures(),
-                               triangles.F.rows(), open_edges(triangles)});
+                               triangles->F.rows(), open_edges(*triangles)});
     obstacles.push_back({name, bone->grid.get(), bone->motion, attached});
     m_bones.push_back(std::move(bone));
   }

@@ -4,12 +4,10 @@
 #include "common/vtk_files.hpp"
 #include "sim/scene/scene.hpp"
 #include "sim/scene/vtu_mesh.hpp"
+#include "stages/io/vtk_convert.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkIdList.h>
 #include <vtkPolyData.h>
 
-#include <cmath>
 #include <map>
 
 namespace ligsim::sim {
@@ -37,72 +35,44 @@ std::vector<int> flagged_nodes(const VtuMesh& vtu, const fs::path& file, const s
   return nodes;
 }
 
-vtkSmartPointer<vtkPolyData> bone_surface(const fs::path& dir, const std::string& name,
-                                          const std::string& bone)
+/// A bone's surface file, checked: triangles only (the pipeline writes no other polygon), some
+/// of them, every point finite. Throws InputError naming the file.
+BoneSurface bone_surface(const fs::path& dir, const std::string& name, const std::string& bone)
 {
   const fs::path file = dir / name;
   if (!fs::exists(file))
     fail("{}: the model has no {} surface: give the {} to `ligsim build` (--{} or [input] {})",
          file.string(), bone, bone, bone, bone);
-  auto surface = read_vtp(file);
-  triangle_surface(surface, file.string()); // validates
-  return surface;
-}
-
-Eigen::Vector3d mean_point(vtkPolyData* surface)
-{
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (vtkIdType p = 0; p < surface->GetNumberOfPoints(); ++p) {
-    double xyz[3];
-    surface->GetPoint(p, xyz);
-    sum += Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+  TriangleSurface surface;
+  try {
+    surface = io::from_polydata(read_vtp(file));
+  } catch (const InputError& error) {
+    fail("{}: {}", file.string(), error.what());
   }
-  return sum / static_cast<double>(surface->GetNumberOfPoints());
+  if (surface.V.rows() == 0 || surface.F.rows() == 0)
+    fail("{}: the surface has no points or no triangles", file.string());
+  for (Eigen::Index p = 0; p < surface.V.rows(); ++p)
+    if (!surface.V.row(p).allFinite())
+      fail("{}: point {} is not finite", file.string(), p);
+  return std::make_shared<const TriangleSurface>(std::move(surface));
 }
 
 } // namespace
 
 Eigen::Vector3d proximal_direction(const KneeModel& model)
 {
-  return (mean_point(model.femur) - mean_point(model.tibia)).normalized();
+  const Eigen::RowVector3d up = model.femur->V.colwise().mean() - model.tibia->V.colwise().mean();
+  return up.transpose().normalized();
 }
 
-TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what)
-{
-  TriangleSurface result;
-  const vtkIdType points = surface->GetNumberOfPoints();
-  const vtkIdType polygons = surface->GetNumberOfPolys();
-  if (points == 0 || polygons == 0)
-    fail("{}: the surface has no points or no triangles", what);
-  result.V.resize(points, 3);
-  for (vtkIdType p = 0; p < points; ++p) {
-    double xyz[3];
-    surface->GetPoint(p, xyz);
-    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
-      fail("{}: point {} is not finite", what, p);
-    result.V.row(p) << xyz[0], xyz[1], xyz[2];
-  }
-  result.F.resize(polygons, 3);
-  auto ids = vtkSmartPointer<vtkIdList>::New();
-  vtkCellArray* cells = surface->GetPolys();
-  cells->InitTraversal();
-  for (vtkIdType c = 0; cells->GetNextCell(ids); ++c) {
-    if (ids->GetNumberOfIds() != 3)
-      fail("{}: polygon {} has {} corners, not 3", what, c, ids->GetNumberOfIds());
-    for (int i = 0; i < 3; ++i)
-      result.F(c, i) = static_cast<int>(ids->GetId(i));
-  }
-  return result;
-}
-
-vtkPolyData* bone_of(const KneeModel& model, const std::string& name)
+const TriangleSurface* bone_of(const KneeModel& model, const std::string& name)
 {
   if (name == "femur")
-    return model.femur;
+    return model.femur.get();
   if (name == "tibia")
-    return model.tibia;
+    return model.tibia.get();
   if (name == "fibula")
-    return model.fibula;
+    return model.fibula.get();
   return nullptr;
 }
 
@@ -132,7 +102,7 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
     }
     return {{single_name, load_knee_model(dir), dir, std::nullopt, read_built_material(dir)}};
   }
-  std::map<std::string, vtkSmartPointer<vtkPolyData>> bones;
+  std::map<std::string, BoneSurface> bones;
   for (const auto& [name, file] : manifest->bones)
     bones[name] = bone_surface(dir, file, name);
   const KneeAnatomy anatomy = read_knee_anatomy(dir);
@@ -203,15 +173,8 @@ KneeModel load_knee_model(const fs::path& dir)
   model.femur = bone_surface(dir, "femur.vtp", "femur");
   model.tibia = bone_surface(dir, "tibia.vtp", "tibia");
   model.anatomy = read_knee_anatomy(dir);
-  if (fs::exists(dir / "centerline.vtp")) {
-    const auto line = read_vtp(dir / "centerline.vtp");
-    model.centerline.resize(line->GetNumberOfPoints(), 3);
-    for (vtkIdType p = 0; p < line->GetNumberOfPoints(); ++p) {
-      double xyz[3];
-      line->GetPoint(p, xyz);
-      model.centerline.row(p) << xyz[0], xyz[1], xyz[2];
-    }
-  }
+  if (fs::exists(dir / "centerline.vtp"))
+    model.centerline = io::points_of(read_vtp(dir / "centerline.vtp"));
   return model;
 }
 

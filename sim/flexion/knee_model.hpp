@@ -10,10 +10,9 @@
 #include "sim/material/material_parameters.hpp"
 
 #include <Eigen/Core>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,15 +20,18 @@
 
 namespace ligsim::sim {
 
+/// A bone's triangles (mm), shared by the ligaments of a knee; null where the model has none.
+using BoneSurface = std::shared_ptr<const TriangleSurface>;
+
 struct KneeModel {
   TetMesh mesh;
   Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
   std::vector<int> femur_nodes;      ///< move rigidly with the femur
   std::vector<int> tibia_nodes;      ///< stay with the (fixed) distal bone: tibia or fibula
-  vtkSmartPointer<vtkPolyData> femur;
-  vtkSmartPointer<vtkPolyData> tibia;
-  vtkSmartPointer<vtkPolyData> fibula; ///< null when the knee has none; moves with the tibia
-  std::string distal_bone = "tibia";   ///< the bone `tibia_nodes` are bound to
+  BoneSurface femur;
+  BoneSurface tibia;
+  BoneSurface fibula;                ///< null when the knee has none; moves with the tibia
+  std::string distal_bone = "tibia"; ///< the bone `tibia_nodes` are bound to
   KneeAnatomy anatomy; ///< anatomy.json of the folder (empty for models built without it)
   Points centerline;   ///< centerline.vtp of the folder, #P x 3 mm (0 rows without it)
 };
@@ -72,14 +74,10 @@ std::vector<LigamentModel> load_knee(const std::filesystem::path& dir,
                                      const std::string& single_name);
 
 /// The bone called `name` ("femur", "tibia" or "fibula") of the model, null if it has none.
-vtkPolyData* bone_of(const KneeModel& model, const std::string& name);
+const TriangleSurface* bone_of(const KneeModel& model, const std::string& name);
 
 /// Up the leg: from the tibia's mean vertex to the femur's (a hint for the axis fit and the
 /// pictures' up direction, not an anatomical axis).
 Eigen::Vector3d proximal_direction(const KneeModel& model);
-
-/// The triangles of a bone surface (polygons split into triangles' fans are not expected: the
-/// pipeline writes triangles only). Throws InputError naming `what` for a non-triangle cell.
-TriangleSurface triangle_surface(vtkPolyData* surface, const std::string& what);
 
 } // namespace ligsim::sim

@@ -45,7 +45,7 @@ ResolvedAxis axis_of_condyles(const KneeModel& model, const AxisSettings& settin
          "data (--posterior x,y,z, [axis] posterior or [anatomy] posterior, or a model built from "
          "a label map), which makes positive angles flex the knee; or give the axis as two "
          "points (--axis x1,y1,z1,x2,y2,z2) or through the epicondyles");
-  const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
+  const TriangleSurface& femur = *model.femur;
   const Eigen::Vector3d proximal = anatomy.proximal ? *anatomy.proximal : proximal_direction(model);
   const CondyleAxisFit fit = fit_condyle_axis(femur, proximal, posterior.normalized());
   ResolvedAxis resolved;
@@ -110,7 +110,7 @@ ResolvedAxis axis_through_epicondyles(const AxisSettings& settings, const KneeAn
 Eigen::Vector3d tibial_axis(const KneeModel& model, const Eigen::Vector3d& proximal,
                             TibialAxisFigures& figures)
 {
-  const TriangleSurface tibia = triangle_surface(model.tibia, "tibia.vtp");
+  const TriangleSurface& tibia = *model.tibia;
   const Eigen::RowVector3d mean = tibia.V.colwise().mean();
   const Eigen::MatrixX3d centred = tibia.V.rowwise() - mean;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(centred.transpose() * centred);
@@ -140,7 +140,7 @@ BuiltPose built_flexion(const KneeModel& model, const Eigen::Vector3d& proximal,
   constexpr int least_slices = 6;
   if (!model.femur)
     return {std::nullopt, Eigen::Vector3d::Zero(), "", "the knee has no femur"};
-  const TriangleSurface femur = triangle_surface(model.femur, "femur.vtp");
+  const TriangleSurface& femur = *model.femur;
   const Eigen::VectorXd height = femur.V * proximal;
   const double distal = height.minCoeff();
   std::vector<Eigen::Vector3d> centroids;

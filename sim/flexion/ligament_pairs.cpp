@@ -3,15 +3,11 @@
 #include "common/atomic_file.hpp"
 #include "common/progress.hpp"
 #include "sim/contact/contact_surface.hpp"
+#include "sim/contact/triangle_distance.hpp"
 #include "sim/contact/winding_number.hpp"
 #include "sim/flexion/flexion_output.hpp"
 
 #include <fmt/format.h>
-#include <vtkCellArray.h>
-#include <vtkImplicitPolyDataDistance.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <memory>
@@ -24,7 +20,7 @@ namespace {
 struct Boundary {
   std::vector<Eigen::Vector3d> nodes;
   std::unique_ptr<WindingNumber> winding;
-  vtkSmartPointer<vtkImplicitPolyDataDistance> distance;
+  std::unique_ptr<TriangleDistance> distance;
 };
 
 Boundary boundary_of(const LigamentState& ligament)
@@ -41,21 +37,7 @@ Boundary boundary_of(const LigamentState& ligament)
   for (int n : surface.nodes)
     boundary.nodes.push_back(x.segment<3>(3 * n));
   boundary.winding = std::make_unique<WindingNumber>(triangles);
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(triangles.V.rows());
-  for (Eigen::Index v = 0; v < triangles.V.rows(); ++v)
-    points->SetPoint(v, triangles.V(v, 0), triangles.V(v, 1), triangles.V(v, 2));
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (Eigen::Index f = 0; f < triangles.F.rows(); ++f) {
-    const vtkIdType corners[3] = {triangles.F(f, 0), triangles.F(f, 1), triangles.F(f, 2)};
-    cells->InsertNextCell(3, corners);
-  }
-  auto polydata = vtkSmartPointer<vtkPolyData>::New();
-  polydata->SetPoints(points);
-  polydata->SetPolys(cells);
-  boundary.distance = vtkSmartPointer<vtkImplicitPolyDataDistance>::New();
-  boundary.distance->SetInput(polydata);
+  boundary.distance = std::make_unique<TriangleDistance>(triangles);
   return boundary;
 }
 
@@ -63,8 +45,7 @@ Boundary boundary_of(const LigamentState& ligament)
 void measure_into(const Boundary& from, const Boundary& to, LigamentPair& pair)
 {
   for (const Eigen::Vector3d& p : from.nodes) {
-    double xyz[3] = {p.x(), p.y(), p.z()};
-    const double distance = std::abs(to.distance->EvaluateFunction(xyz));
+    const double distance = (*to.distance)(p);
     const bool inside = to.winding->bounds().contains(p) && std::abs((*to.winding)(p)) >= 0.5;
     if (inside) {
       ++pair.nodes_inside;

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/pvd_file.hpp"
 #include "common/vtk_files.hpp"
 
 #include <fmt/format.h>
@@ -29,15 +30,10 @@ vtkSmartPointer<vtkDoubleArray> make_array(const char* name, int components, vtk
   return array;
 }
 
-} // namespace
-
-SceneOutput::SceneOutput(const HyperelasticBody& body, std::filesystem::path directory)
-    : m_body(body)
-    , m_directory(std::move(directory))
-{
-  ensure_directory(m_directory);
-}
-
+/// The body deformed to positions `x` (mm): point data "displacement"; cell data
+/// "strain_energy_density" (MPa), "J", and with fibers "fiber_stretch" (|F a|) and
+/// "fiber_direction" (unit, deformed). Throws SolverError naming the first non-finite position
+/// or inverted element (`label` names the state in the message).
 vtkSmartPointer<vtkUnstructuredGrid>
 deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std::string& label)
 {
@@ -103,15 +99,23 @@ deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std:
   return grid;
 }
 
+} // namespace
+
+SceneOutput::SceneOutput(const HyperelasticBody& body, std::filesystem::path directory)
+    : m_body(body)
+    , m_directory(std::move(directory))
+{
+  ensure_directory(m_directory);
+}
+
 void SceneOutput::write_step(int index, double time, const Eigen::VectorXd& x,
                              const PointArrays& extra)
 {
   write(fmt::format("step_{:04d}.vtu", index), time, x, extra);
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> SceneOutput::write(const std::string& name, double time,
-                                                        const Eigen::VectorXd& x,
-                                                        const PointArrays& extra)
+std::filesystem::path SceneOutput::write(const std::string& name, double time,
+                                         const Eigen::VectorXd& x, const PointArrays& extra)
 {
   auto grid = deformed_grid(m_body, x, name);
   for (const auto& [array_name, values] : extra) {
@@ -125,7 +129,7 @@ vtkSmartPointer<vtkUnstructuredGrid> SceneOutput::write(const std::string& name,
   }
   write_vtk(grid, m_directory / name);
   m_steps.emplace_back(time, name);
-  return grid;
+  return m_directory / name;
 }
 
 void SceneOutput::finish(const std::string& pvd)

@@ -1,27 +1,18 @@
 #pragma once
 /// @brief Per-step outputs of a scene: a VTU of the deformed mesh (point data: displacement;
-/// cell data: strain energy density, J, fiber stretch and direction) and the .pvd series.
+/// cell data: "strain_energy_density" (MPa), "J", and with fibers "fiber_stretch" (|F a|) and
+/// "fiber_direction" (unit, deformed)) and the .pvd series.
 
 #include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
-#include <vtkSmartPointer.h>
 
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
-class vtkUnstructuredGrid;
-
 namespace ligsim::sim {
-
-/// The body deformed to positions `x` (mm): point data "displacement"; cell data
-/// "strain_energy_density" (MPa), "J", and with fibers "fiber_stretch" (|F a|) and
-/// "fiber_direction" (unit, deformed). Throws SolverError naming the first non-finite position
-/// or inverted element (`label` names the state in the message).
-vtkSmartPointer<vtkUnstructuredGrid>
-deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std::string& label);
 
 /// Extra point data of a written state: name and one value per node.
 using PointArrays = std::vector<std::pair<std::string, Eigen::VectorXd>>;
@@ -34,10 +25,9 @@ public:
   /// seconds). Throws SolverError rather than write a non-finite value.
   void write_step(int index, double time, const Eigen::VectorXd& x, const PointArrays& extra = {});
   /// The same under any file name (relative to the directory), with `extra` point data;
-  /// returns what it wrote.
-  vtkSmartPointer<vtkUnstructuredGrid> write(const std::string& name, double time,
-                                             const Eigen::VectorXd& x,
-                                             const PointArrays& extra = {});
+  /// returns the file written.
+  std::filesystem::path write(const std::string& name, double time, const Eigen::VectorXd& x,
+                              const PointArrays& extra = {});
 
   /// Writes `<directory>/<pvd>` listing every step written.
   void finish(const std::string& pvd = "series.pvd");

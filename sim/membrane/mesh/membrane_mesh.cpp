@@ -127,4 +127,14 @@ void update_lumped_masses(MembraneMesh& mesh, const NodeIncidence& incidence,
   }
 }
 
+std::vector<std::array<int, 2>> crack_edges(const MembraneMesh& mesh)
+{
+  std::vector<std::array<int, 2>> edges;
+  for (int tri = 0; tri < mesh.triangle_count(); ++tri)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.side_cut[tri][k])
+        edges.push_back({mesh.triangles[tri][k], mesh.triangles[tri][(k + 1) % 3]});
+  return edges;
+}
+
 } // namespace ligsim::membrane

@@ -78,6 +78,9 @@ double signed_area(const Vec2& a, const Vec2& b, const Vec2& c);
 double min_angle(const Vec2& a, const Vec2& b, const Vec2& c);
 /// Smallest interior angle over the mesh, radians (rest configuration).
 double min_rest_angle(const MembraneMesh& mesh);
+
+/// The crack faces: pairs of node indices of the sides flagged cut, each side once.
+std::vector<std::array<int, 2>> crack_edges(const MembraneMesh& mesh);
 /// Recomputes the lumped mass of `nodes` from their triangles: rho h A / 3 each.
 void update_lumped_masses(MembraneMesh& mesh, const NodeIncidence& incidence,
                           double areal_density_t_per_mm2, const std::vector<int>& nodes);

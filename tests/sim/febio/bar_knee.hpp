@@ -8,29 +8,15 @@
 #include "sim/mesh/sphere_surface.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
-
+#include <memory>
 #include <vector>
 
 namespace ligsim::test {
 
-inline vtkSmartPointer<vtkPolyData> polydata(const TriangleSurface& surface)
+/// A bone of the model: `surface`, shared.
+inline sim::BoneSurface bone(const TriangleSurface& surface)
 {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
-    points->InsertNextPoint(surface.V(v, 0), surface.V(v, 1), surface.V(v, 2));
-  auto triangles = vtkSmartPointer<vtkCellArray>::New();
-  for (Eigen::Index f = 0; f < surface.F.rows(); ++f) {
-    const vtkIdType ids[3] = {surface.F(f, 0), surface.F(f, 1), surface.F(f, 2)};
-    triangles->InsertNextCell(3, ids);
-  }
-  auto result = vtkSmartPointer<vtkPolyData>::New();
-  result->SetPoints(points);
-  result->SetPolys(triangles);
-  return result;
+  return std::make_shared<const TriangleSurface>(surface);
 }
 
 constexpr double bar_length_mm = 20.0;
@@ -47,8 +33,8 @@ inline sim::KneeModel bar_knee()
     if (model.mesh.V(n, 2) > bar_length_mm - 1e-9)
       model.femur_nodes.push_back(static_cast<int>(n));
   }
-  model.femur = polydata(sim::sphere_surface({2.0, 2.0, bar_length_mm + 6.0}, 3.0, 1));
-  model.tibia = polydata(sim::sphere_surface({2.0, 2.0, -6.0}, 3.0, 1));
+  model.femur = bone(sim::sphere_surface({2.0, 2.0, bar_length_mm + 6.0}, 3.0, 1));
+  model.tibia = bone(sim::sphere_surface({2.0, 2.0, -6.0}, 3.0, 1));
   return model;
 }
 
@@ -62,7 +48,7 @@ inline sim::KneeModel overlapping_bar_knee(double overlap_mm)
   TriangleSurface surface;
   surface.V = box.V.rowwise() + Eigen::RowVector3d(overlap_mm - 10.0, -3.0, 4.0);
   surface.F = sim::boundary_surface(box).faces;
-  model.tibia = polydata(surface);
+  model.tibia = bone(surface);
   return model;
 }
 

@@ -87,7 +87,7 @@ TEST(FreeFemur, TheContactOfTheMovingFemurEntersBothDerivativesExactly)
   TriangleSurface side;
   side.V = block.V.rowwise() + Eigen::RowVector3d(-8.1, -1.0, 10.0);
   side.F = sim::boundary_surface(block).faces;
-  ligament.model.femur = test::polydata(side);
+  ligament.model.femur = test::bone(side);
   std::filesystem::remove_all(cache() / "beside");
   LigamentAtPose bar(ligament, settings, bar_joint(), cache() / "beside");
   ASSERT_TRUE(bar.settle()) << bar.failure();

@@ -119,7 +119,7 @@ TEST(KneeModel, ReadsTetsFibersSetsAndBones)
   EXPECT_EQ(model.tibia_nodes.size(), 4u);
   // Directions come back unit length: the sweep applies its own in-situ strain.
   EXPECT_NEAR(model.fiber_directions.row(3).norm(), 1.0, 1e-12);
-  EXPECT_EQ(triangle_surface(model.femur, "femur").F.rows(), 1);
+  EXPECT_EQ(model.femur->F.rows(), 1);
 }
 
 TEST(KneeModel, EachMissingPieceIsNamed)

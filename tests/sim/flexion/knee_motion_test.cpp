@@ -13,9 +13,6 @@
 #include "sim/mesh/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
-#include <vtkCellArray.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
 
 #include <filesystem>
 #include <fstream>
@@ -28,21 +25,17 @@ namespace fs = std::filesystem;
 namespace {
 
 /// A closed box surface, outward triangles, mm.
-vtkSmartPointer<vtkPolyData> box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+BoneSurface box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
 {
-  auto points = vtkSmartPointer<vtkPoints>::New();
+  TriangleSurface surface;
+  surface.V.resize(8, 3);
   for (int i = 0; i < 8; ++i)
-    points->InsertNextPoint((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(),
-                            (i & 4) ? hi.z() : lo.z());
-  const vtkIdType faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  for (const auto& f : faces)
-    cells->InsertNextCell(3, f);
-  auto surface = vtkSmartPointer<vtkPolyData>::New();
-  surface->SetPoints(points);
-  surface->SetPolys(cells);
-  return surface;
+    surface.V.row(i) << ((i & 1) ? hi.x() : lo.x()), ((i & 2) ? hi.y() : lo.y()),
+        ((i & 4) ? hi.z() : lo.z());
+  surface.F.resize(12, 3);
+  surface.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2,
+      4, 6, 1, 3, 5, 3, 7, 5;
+  return std::make_shared<const TriangleSurface>(std::move(surface));
 }
 
 /// A 4 x 4 x 20 mm bar along z (the ligament), fibers along it: tibia attached at z = 0, femur
@@ -431,26 +424,24 @@ TEST(KneeMotion, TheBuiltPoseIsMeasuredAsTheFemoralShaftAgainstTheTibia)
     // Rings of 48 points every 5 mm, joined by triangles (open at its ends).
     constexpr int around = 48;
     const int rings = static_cast<int>(length_mm / 5.0) + 1;
-    auto points = vtkSmartPointer<vtkPoints>::New();
+    TriangleSurface surface;
+    surface.V.resize(rings * around, 3);
     for (int r = 0; r < rings; ++r)
       for (int a = 0; a < around; ++a) {
         const double phi = 2.0 * M_PI * a / around;
-        const Eigen::Vector3d p =
-            pose * Eigen::Vector3d(12.0 * std::cos(phi), 12.0 * std::sin(phi), 21.0 + 5.0 * r);
-        points->InsertNextPoint(p.x(), p.y(), p.z());
+        surface.V.row(r * around + a) =
+            (pose * Eigen::Vector3d(12.0 * std::cos(phi), 12.0 * std::sin(phi), 21.0 + 5.0 * r))
+                .transpose();
       }
-    auto cells = vtkSmartPointer<vtkCellArray>::New();
+    surface.F.resize(2 * (rings - 1) * around, 3);
     for (int r = 0; r + 1 < rings; ++r)
       for (int a = 0; a < around; ++a) {
-        const vtkIdType p = r * around + a, q = r * around + (a + 1) % around;
-        const vtkIdType lower[3] = {p, q, q + around}, upper[3] = {p, q + around, p + around};
-        cells->InsertNextCell(3, lower);
-        cells->InsertNextCell(3, upper);
+        const int p = r * around + a, q = r * around + (a + 1) % around;
+        const int f = 2 * (r * around + a);
+        surface.F.row(f) << p, q, q + around;
+        surface.F.row(f + 1) << p, q + around, p + around;
       }
-    auto surface = vtkSmartPointer<vtkPolyData>::New();
-    surface->SetPoints(points);
-    surface->SetPolys(cells);
-    return surface;
+    return std::make_shared<const TriangleSurface>(std::move(surface));
   };
   model.femur = femur_of(250.0, Eigen::Isometry3d::Identity());
   const KneeMotion straight = resolve_knee_motion(model, settings);

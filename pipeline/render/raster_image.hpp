@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-namespace ligsim::membrane {
+namespace ligsim::render {
 
 using Rgb = std::array<std::uint8_t, 3>;
 
@@ -45,4 +45,4 @@ private:
   std::vector<Rgb> m_pixels;
 };
 
-} // namespace ligsim::membrane
+} // namespace ligsim::render

@@ -1,4 +1,4 @@
-#include "sim/membrane/output/membrane_frame.hpp"
+#include "pipeline/render/membrane_frame.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -11,23 +11,16 @@
 
 #include <cmath>
 
-namespace ligsim::membrane {
+namespace ligsim::render {
 
-std::vector<std::array<int, 2>> crack_edges(const MembraneMesh& mesh)
-{
-  std::vector<std::array<int, 2>> edges;
-  for (int tri = 0; tri < mesh.triangle_count(); ++tri)
-    for (int k = 0; k < 3; ++k)
-      if (mesh.side_cut[tri][k])
-        edges.push_back({mesh.triangles[tri][k], mesh.triangles[tri][(k + 1) % 3]});
-  return edges;
-}
+using membrane::Triangle;
+using membrane::Vec2;
 
-vtkSmartPointer<vtkUnstructuredGrid> membrane_frame(const TearSimulation& simulation,
+vtkSmartPointer<vtkUnstructuredGrid> membrane_frame(const membrane::TearSimulation& simulation,
                                                     const std::vector<double>& criterion)
 {
-  const MembraneMesh& mesh = simulation.mesh();
-  const CorotationalElements& elements = simulation.elements();
+  const membrane::MembraneMesh& mesh = simulation.mesh();
+  const membrane::CorotationalElements& elements = simulation.elements();
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
 
   auto points = vtkSmartPointer<vtkPoints>::New();
@@ -88,4 +81,4 @@ vtkSmartPointer<vtkUnstructuredGrid> membrane_frame(const TearSimulation& simula
   return grid;
 }
 
-} // namespace ligsim::membrane
+} // namespace ligsim::render

@@ -1,11 +1,17 @@
-#include "sim/membrane/output/render_frame.hpp"
+#include "pipeline/render/tear_frame_picture.hpp"
 
-#include "sim/membrane/output/membrane_frame.hpp"
+#include "sim/membrane/mesh/membrane_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::membrane {
+namespace ligsim::render {
+
+using membrane::MembraneMesh;
+using membrane::TearSimulation;
+using membrane::Triangle;
+using membrane::Vec2;
+
 namespace {
 
 Rgb mix(const Rgb& a, const Rgb& b, double t)
@@ -79,4 +85,4 @@ RasterImage render_frame(const TearSimulation& simulation, const std::vector<dou
   return image;
 }
 
-} // namespace ligsim::membrane
+} // namespace ligsim::render

@@ -3,12 +3,12 @@
 /// below 1/2, orange, red at 1 and above), thin element edges, the fibers as short strokes,
 /// and the crack faces in black.
 
-#include "sim/membrane/output/raster_image.hpp"
+#include "pipeline/render/raster_image.hpp"
 #include "sim/membrane/scene/tear_simulation.hpp"
 
 #include <vector>
 
-namespace ligsim::membrane {
+namespace ligsim::render {
 
 /// The view: the rest configuration's bounding box with a margin of `margin` x its size, so
 /// every frame of a run shares it. `size_px` is the larger side of the image.
@@ -18,13 +18,13 @@ struct FrameView {
   int size_px = 800;
 };
 
-FrameView frame_view(const MembraneMesh& mesh, int size_px, double margin = 0.15);
+FrameView frame_view(const membrane::MembraneMesh& mesh, int size_px, double margin = 0.15);
 
 /// `criterion`: one value per triangle (Tearing::element_criterion).
-RasterImage render_frame(const TearSimulation& simulation, const std::vector<double>& criterion,
-                         const FrameView& view);
+RasterImage render_frame(const membrane::TearSimulation& simulation,
+                         const std::vector<double>& criterion, const FrameView& view);
 
 /// The colour of a criterion value.
 Rgb criterion_colour(double criterion);
 
-} // namespace ligsim::membrane
+} // namespace ligsim::render

@@ -1,4 +1,4 @@
-#include "sim/membrane/output/raster_image.hpp"
+#include "pipeline/render/raster_image.hpp"
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace ligsim::membrane {
+namespace ligsim::render {
 namespace {
 
 double edge_function(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p)
@@ -121,4 +121,4 @@ void RasterImage::write_png(const std::filesystem::path& file) const
   out.commit();
 }
 
-} // namespace ligsim::membrane
+} // namespace ligsim::render

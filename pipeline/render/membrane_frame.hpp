@@ -15,13 +15,10 @@
 
 class vtkUnstructuredGrid;
 
-namespace ligsim::membrane {
+namespace ligsim::render {
 
 /// `criterion`: one value per triangle (Tearing::element_criterion).
-vtkSmartPointer<vtkUnstructuredGrid> membrane_frame(const TearSimulation& simulation,
+vtkSmartPointer<vtkUnstructuredGrid> membrane_frame(const membrane::TearSimulation& simulation,
                                                     const std::vector<double>& criterion);
 
-/// The crack faces: pairs of node indices of the sides flagged cut, each side once.
-std::vector<std::array<int, 2>> crack_edges(const MembraneMesh& mesh);
-
-} // namespace ligsim::membrane
+} // namespace ligsim::render
