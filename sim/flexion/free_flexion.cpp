@@ -21,6 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The ligaments' equilibrium tolerance in the search, as a fraction of the femur's.
+constexpr double kSearchLigamentTolerance = 1e-2;
+
 } // namespace
 
 bool flexes_free_by_default(const std::vector<LigamentModel>& ligaments)
@@ -65,6 +68,11 @@ FreeFlexion find_free_flexion(const std::vector<LigamentModel>& ligaments, const
   for (const LigamentModel& ligament : ligaments) {
     FlexionSettings own = ligament_settings(settings, ligament);
     own.mode = FlexionMode::quasi_static;
+    // The search needs each ligament's force on the femur to a small part of the femur's own
+    // tolerance, not to the sweep's: the sweep that writes the results solves the ligaments
+    // again at the found poses to its tolerance, starting from these equilibria.
+    own.newton.residual_tolerance =
+        std::max(own.newton.residual_tolerance, kSearchLigamentTolerance * settings.free.tolerance);
     held.emplace_back(ligament, own, motion.jcs, contact_cache);
   }
   std::unique_ptr<BoneLevelSet> tibia;
