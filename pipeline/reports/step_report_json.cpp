@@ -31,4 +31,21 @@ nlohmann::json to_json(const sim::StepReport& step)
   return json;
 }
 
+nlohmann::json to_json(const sim::FrameReport& frame)
+{
+  return {{"frame", frame.frame},
+          {"time_s", frame.time_s},
+          {"load_factor", frame.load_factor},
+          {"relative_residual", frame.relative_residual},
+          {"relative_inertia", frame.relative_inertia},
+          {"kinetic_energy_mj", frame.kinetic_energy_mj},
+          {"strain_energy_mj", frame.strain_energy_mj},
+          {"min_j", frame.min_j},
+          {"min_j_element", frame.min_j_element},
+          {"substeps", frame.substeps},
+          {"cg_iterations", frame.linear_iterations},
+          {"factorizations", frame.factorizations},
+          {"wall_s", frame.wall_s}};
+}
+
 } // namespace ligsim::reports

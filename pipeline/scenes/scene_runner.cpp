@@ -172,19 +172,7 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
       output->write_step(0, 0.0, x);
     auto record = [&](const FrameReport& frame, const Eigen::VectorXd& state,
                       const Eigen::VectorXd& residual) {
-      nlohmann::json entry = {{"frame", frame.frame},
-                              {"time_s", frame.time_s},
-                              {"load_factor", frame.load_factor},
-                              {"relative_residual", frame.relative_residual},
-                              {"relative_inertia", frame.relative_inertia},
-                              {"kinetic_energy_mj", frame.kinetic_energy_mj},
-                              {"strain_energy_mj", frame.strain_energy_mj},
-                              {"min_j", frame.min_j},
-                              {"min_j_element", frame.min_j_element},
-                              {"substeps", frame.substeps},
-                              {"cg_iterations", frame.linear_iterations},
-                              {"factorizations", frame.factorizations},
-                              {"wall_s", frame.wall_s}};
+      nlohmann::json entry = reports::to_json(frame);
       entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
                                           fmt::format("{},{}", frame.frame, frame.time_s));
       if (contact)
