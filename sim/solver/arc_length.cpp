@@ -39,14 +39,23 @@ private:
   bool m_analyzed = false;
 };
 
-/// Newton at a fixed load factor from u; false when it does not converge.
-bool newton_at(const EquilibriumSystem& system, Tangent& tangent, double lambda,
-               const ArcLengthSettings& settings, Eigen::VectorXd& u, int& iterations)
+/// The plane w du_p . du + dlambda_p dlambda = 0 normal to the predictor (du_p, dlambda_p) in
+/// the scaled arc's metric: Riks' corrector stays on it.
+struct NormalPlane {
+  const Eigen::VectorXd& du_p;
+  double dlambda_p = 0.0;
+  double w = 0.0;
+};
+
+/// Newton's corrector from (u, lambda): on the normal plane (bordered solves) or, without one, at
+/// the fixed load factor lambda. False when it does not converge; `iterations` counts its solves.
+bool correct(const EquilibriumSystem& system, Tangent& tangent, const NormalPlane* plane,
+             const ArcLengthSettings& settings, Eigen::VectorXd& u, double& lambda, int& iterations)
 {
   const Eigen::VectorXd& f = system.load();
   const double tolerance = settings.residual_tolerance * f.norm();
   Eigen::VectorXd g;
-  for (int k = 0; k <= settings.max_iterations; ++k) {
+  for (iterations = 0;; ++iterations) {
     if (!system.internal_force(u, g))
       return false;
     const Eigen::VectorXd residual = g - lambda * f;
@@ -54,12 +63,18 @@ bool newton_at(const EquilibriumSystem& system, Tangent& tangent, double lambda,
       return false;
     if (residual.norm() <= tolerance)
       return true;
-    if (k == settings.max_iterations || !tangent.factorize(system, u))
+    if (iterations == settings.max_iterations || !tangent.factorize(system, u))
       return false;
-    u -= tangent.solve(residual);
-    ++iterations;
+    Eigen::VectorXd du = tangent.solve(-residual);
+    if (plane) {
+      const Eigen::VectorXd b = tangent.solve(f);
+      const double dlambda =
+          -plane->w * plane->du_p.dot(du) / (plane->w * plane->du_p.dot(b) + plane->dlambda_p);
+      du += dlambda * b;
+      lambda += dlambda;
+    }
+    u += du;
   }
-  return false;
 }
 
 /// The extremum of the parabola through (s_i, lambda_i), i = 0, 1, 2.
@@ -156,7 +171,6 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
   ArcLengthResult result;
   const Eigen::VectorXd& f = system.load();
   const double target = settings.target_load_factor;
-  const double tolerance = settings.residual_tolerance * f.norm();
   Tangent tangent;
   if (u.size() != system.size() || !u.allFinite() || f.norm() == 0.0 ||
       !tangent.factorize(system, u)) {
@@ -194,28 +208,8 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
       const Eigen::VectorXd du_p = dlambda_p * v;
       u_new = u + du_p;
       lambda_new = lambda + dlambda_p;
-      iterations = 0;
-      Eigen::VectorXd g;
-      for (;;) {
-        if (!system.internal_force(u_new, g))
-          break;
-        const Eigen::VectorXd residual = g - lambda_new * f;
-        if (!residual.allFinite())
-          break;
-        if (residual.norm() <= tolerance) {
-          converged = true;
-          break;
-        }
-        if (iterations == settings.max_iterations || !tangent.factorize(system, u_new))
-          break;
-        // Bordered solve on the normal plane w du_p . du + dlambda_p dlambda = 0.
-        const Eigen::VectorXd a = tangent.solve(-residual);
-        const Eigen::VectorXd b = tangent.solve(f);
-        const double dlambda = -w * du_p.dot(a) / (w * du_p.dot(b) + dlambda_p);
-        u_new += a + dlambda * b;
-        lambda_new += dlambda;
-        ++iterations;
-      }
+      const NormalPlane plane{du_p, dlambda_p, w};
+      converged = correct(system, tangent, &plane, settings, u_new, lambda_new, iterations);
       result.newton_iterations += iterations;
       if (converged)
         break;
@@ -250,8 +244,9 @@ ArcLengthResult follow_path(const EquilibriumSystem& system, Eigen::VectorXd& u,
       // The path crossed the target: Newton at the target from the chord's interpolation.
       const double s = (target - lambda_old) / (lambda - lambda_old);
       Eigen::VectorXd at_target = u_old + s * (u - u_old);
+      double at_load = target;
       int newton = 0;
-      const bool found = newton_at(system, tangent, target, settings, at_target, newton);
+      const bool found = correct(system, tangent, nullptr, settings, at_target, at_load, newton);
       result.newton_iterations += newton;
       if (found) {
         u = at_target;
