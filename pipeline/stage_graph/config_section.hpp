@@ -4,14 +4,14 @@
 /// key in every error, and unknown keys (typos) refused.
 
 #include "common/error.hpp"
-#include "common/toml_numbers.hpp"
+#include "common/toml_table.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 
 #include <toml++/toml.h>
 
 #include <filesystem>
-#include <set>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,94 +21,45 @@ namespace config_reading {
 
 namespace fs = std::filesystem;
 
-/// Reads typed values from one TOML table, remembering which keys were used, so that unknown
-/// keys (typos) can be reported.
+/// Reads typed values of one TOML table (absent: nothing to read) through the project's TOML
+/// reader, remembering which keys the config knows, so that unknown keys (typos) are refused.
 class Section {
 public:
-  Section(const toml::table* table, std::string name, fs::path file)
-      : m_table(table)
-      , m_name(std::move(name))
-      , m_file(std::move(file))
+  Section(const toml::table* table, const std::string& name, const fs::path& file)
+      : m_file(file)
   {
+    if (table)
+      m_table.emplace(*table, file.string(), "[" + name + "]");
   }
 
   template <class T> void read(const std::string& key, T& target)
   {
-    m_known.insert(key);
-    if (m_table == nullptr)
+    if (!has(key)) {
+      allow(key);
       return;
-    const toml::node* node = m_table->get(key);
-    if (node == nullptr)
-      return;
-    if constexpr (std::is_same_v<T, double>) {
-      if (auto v = toml_number(*node)) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, int>) {
-      if (auto v = toml_int(*node)) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, bool>) {
-      if (auto v = node->value<bool>()) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      if (auto v = node->value<std::string>()) {
-        target = *v;
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, std::vector<int>>) {
-      if (const toml::array* array = node->as_array()) {
-        target.clear();
-        for (const toml::node& item : *array) {
-          const auto v = toml_int(item);
-          if (!v)
-            type_error(key, node, "a list of integers");
-          target.push_back(*v);
-        }
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
-      if (const toml::array* array = node->as_array()) {
-        target.clear();
-        for (const toml::node& item : *array) {
-          const auto v = item.value<std::string>();
-          if (!v)
-            type_error(key, node, "a list of strings");
-          target.push_back(*v);
-        }
-        return;
-      }
-    } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      if (const toml::array* array = node->as_array(); array && array->size() == 3) {
-        for (std::size_t i = 0; i < 3; ++i) {
-          const auto v = toml_number(*array->get(i));
-          if (!v)
-            type_error(key, node, "three numbers");
-          target[static_cast<Eigen::Index>(i)] = *v;
-        }
-        return;
-      }
     }
-    type_error(key, node, expected_name<T>());
+    TomlTable& table = *m_table;
+    if constexpr (std::is_same_v<T, double>)
+      target = table.required_number(key);
+    else if constexpr (std::is_same_v<T, int>)
+      target = table.integer(key, target);
+    else if constexpr (std::is_same_v<T, bool>)
+      target = table.boolean(key, target);
+    else if constexpr (std::is_same_v<T, std::string>)
+      target = table.required_text(key);
+    else if constexpr (std::is_same_v<T, std::vector<int>>)
+      target = table.integers(key);
+    else if constexpr (std::is_same_v<T, std::vector<std::string>>)
+      target = table.texts(key);
+    else
+      target = table.required_vector3(key);
   }
 
   /// A label: a number or a name, kept as text (as on the command line).
   void read_label(const std::string& key, std::string& target)
   {
-    m_known.insert(key);
-    const toml::node* node = m_table ? m_table->get(key) : nullptr;
-    if (node == nullptr)
-      return;
-    if (auto number = node->value<int64_t>())
-      target = std::to_string(*number);
-    else if (auto name = node->value<std::string>())
-      target = *name;
-    else
-      type_error(key, node, "a label number or name");
+    if (m_table)
+      target = m_table->label(key, target);
   }
 
   void read_path(const std::string& key, fs::path& target)
@@ -120,50 +71,23 @@ public:
   }
 
   /// Marks a sub-table name as known.
-  void allow(const std::string& key) { m_known.insert(key); }
+  void allow(const std::string& key)
+  {
+    if (m_table)
+      m_table->allow(key);
+  }
 
-  bool has(const std::string& key) const { return m_table && m_table->contains(key); }
+  bool has(const std::string& key) const { return m_table && m_table->has(key); }
 
   void reject_unknown() const
   {
-    if (m_table == nullptr)
-      return;
-    for (const auto& [key, node] : *m_table)
-      if (!m_known.count(std::string(key.str())))
-        fail("{}:{}: unknown key '{}' in [{}]", m_file.string(), node.source().begin.line,
-             key.str(), m_name);
+    if (m_table)
+      m_table->reject_unknown_keys();
   }
 
 private:
-  template <class T> static const char* expected_name()
-  {
-    if constexpr (std::is_same_v<T, double>)
-      return "a number";
-    else if constexpr (std::is_same_v<T, int>)
-      return "an integer";
-    else if constexpr (std::is_same_v<T, bool>)
-      return "true or false";
-    else if constexpr (std::is_same_v<T, std::string>)
-      return "a string";
-    else if constexpr (std::is_same_v<T, std::vector<int>>)
-      return "a list of integers";
-    else if constexpr (std::is_same_v<T, std::vector<std::string>>)
-      return "a list of strings";
-    else
-      return "three numbers";
-  }
-
-  [[noreturn]] void type_error(const std::string& key, const toml::node* node,
-                               const char* expected) const
-  {
-    fail("{}:{}: [{}] {} must be {}", m_file.string(), node->source().begin.line, m_name, key,
-         expected);
-  }
-
-  const toml::table* m_table;
-  std::string m_name;
+  std::optional<TomlTable> m_table;
   fs::path m_file;
-  std::set<std::string> m_known;
 };
 
 /// Reads each visited parameter from one section.

@@ -1,8 +1,8 @@
 #include "sim/flexion/flexion_config.hpp"
 
 #include "common/error.hpp"
+#include "common/toml_table.hpp"
 #include "sim/scene/contact_table.hpp"
-#include "sim/scene/toml_reader.hpp"
 
 namespace ligsim::sim {
 

@@ -1,8 +1,8 @@
 #pragma once
 /// @brief Reads the keys of a `[contact]` table that flexion configs and scenes share.
 
+#include "common/toml_table.hpp"
 #include "sim/contact/contact_config.hpp"
-#include "sim/scene/toml_reader.hpp"
 
 namespace ligsim::sim {
 

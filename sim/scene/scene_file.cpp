@@ -1,9 +1,9 @@
 #include "common/error.hpp"
+#include "common/toml_table.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/scene/contact_table.hpp"
 #include "sim/scene/scene.hpp"
-#include "sim/scene/toml_reader.hpp"
 #include "sim/scene/vtu_mesh.hpp"
 
 #include <fmt/format.h>

@@ -154,7 +154,7 @@ TEST(BuildBadInput, ConfigIntegerBeyondIntIsRefused)
       write_text("ligsim_big.toml", "[input]\nsurface = \"x.stl\"\n"
                                     "[centerline]\nrelax_iterations = 5000000000\n");
   expect_clean_failure("build --config " + config.string(), fresh_folder("config_int"),
-                       "[centerline] relax_iterations must be an integer");
+                       "ligsim_big.toml:4: [centerline] relax_iterations: expected an integer");
 }
 
 TEST(BuildBadInput, StrictRefusesANonManifoldEdgeAndSaysWhere)

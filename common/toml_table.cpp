@@ -1,15 +1,18 @@
-#include "sim/scene/toml_reader.hpp"
+#include "common/toml_table.hpp"
 
 #include "common/error.hpp"
 #include "common/toml_numbers.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
-namespace ligsim::sim {
+namespace ligsim {
 
 toml::table parse_toml(const std::string& text, const std::string& name)
 {
@@ -30,9 +33,11 @@ std::string read_text_file(const std::filesystem::path& file, const std::string&
   return text.str();
 }
 
-TomlTable::TomlTable(const toml::table& table, std::string where)
+TomlTable::TomlTable(const toml::table& table, std::string file, std::string label)
     : m_table(&table)
-    , m_where(std::move(where))
+    , m_file(std::move(file))
+    , m_label(std::move(label))
+    , m_where(m_label.empty() ? m_file : m_file + " " + m_label)
 {
 }
 
@@ -41,9 +46,24 @@ bool TomlTable::has(const std::string& key) const
   return m_table->contains(key);
 }
 
+std::string TomlTable::location(const std::string& key) const
+{
+  const toml::node* found = m_table->get(key);
+  const auto line = found ? found->source().begin.line : 0;
+  return line > 0 ? fmt::format("{}:{}", m_file, line) : m_file;
+}
+
+std::string TomlTable::child_label(const std::string& key, std::optional<std::size_t> index) const
+{
+  const bool plain_table = m_label.size() > 2 && m_label[0] == '[' && m_label[1] != '[';
+  const std::string path = plain_table ? m_label.substr(1, m_label.size() - 2) + "." + key : key;
+  const std::string own = index ? fmt::format("[[{}]] #{}", path, *index + 1) : "[" + path + "]";
+  return m_label.empty() || plain_table ? own : m_label + " " + own;
+}
+
 void TomlTable::fail_at(const std::string& key, const std::string& problem) const
 {
-  fail("{}: {}: {}", m_where, key, problem);
+  fail("{}: {}{}: {}", location(key), m_label.empty() ? "" : m_label + " ", key, problem);
 }
 
 const toml::node& TomlTable::node(const std::string& key)
@@ -96,6 +116,18 @@ std::string TomlTable::required_text(const std::string& key)
   if (!value.is_string())
     fail_at(key, "expected a string");
   return value.value<std::string>().value();
+}
+
+std::string TomlTable::label(const std::string& key, const std::string& fallback)
+{
+  if (!has(key))
+    return fallback;
+  const toml::node& value = node(key);
+  if (const std::optional<int64_t> number = value.value_exact<int64_t>())
+    return std::to_string(*number);
+  if (value.is_string())
+    return value.value<std::string>().value();
+  fail_at(key, "expected a label number or name");
 }
 
 std::string TomlTable::text(const std::string& key, const std::string& fallback)
@@ -176,6 +208,27 @@ std::vector<double> TomlTable::numbers(const std::string& key)
   return values;
 }
 
+std::vector<std::vector<double>> TomlTable::number_lists(const std::string& key)
+{
+  const toml::array* array = node(key).as_array();
+  if (!array)
+    fail_at(key, "expected an array of arrays of numbers");
+  std::vector<std::vector<double>> lists;
+  for (const toml::node& item : *array) {
+    const toml::array* list = item.as_array();
+    if (!list)
+      fail_at(key, "expected an array of arrays of numbers");
+    std::vector<double>& values = lists.emplace_back();
+    for (const toml::node& entry : *list) {
+      const std::optional<double> value = toml_number(entry);
+      if (!value || !std::isfinite(*value))
+        fail_at(key, "expected arrays of finite numbers");
+      values.push_back(*value);
+    }
+  }
+  return lists;
+}
+
 std::optional<TomlTable> TomlTable::table(const std::string& key)
 {
   if (!has(key))
@@ -183,7 +236,15 @@ std::optional<TomlTable> TomlTable::table(const std::string& key)
   const toml::table* sub = node(key).as_table();
   if (!sub)
     fail_at(key, "expected a table");
-  return TomlTable(*sub, m_where + " " + key);
+  return TomlTable(*sub, m_file, child_label(key));
+}
+
+TomlTable TomlTable::required_table(const std::string& key)
+{
+  std::optional<TomlTable> sub = table(key);
+  if (!sub)
+    fail_at(key, "missing (a table)");
+  return std::move(*sub);
 }
 
 std::vector<TomlTable> TomlTable::tables(const std::string& key)
@@ -198,7 +259,7 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key)
     const toml::table* sub = array->get(i)->as_table();
     if (!sub)
       fail_at(key, "expected an array of tables ([[" + key + "]])");
-    result.emplace_back(*sub, m_where + " [[" + key + "]] #" + std::to_string(i + 1));
+    result.emplace_back(*sub, m_file, child_label(key, i));
   }
   return result;
 }
@@ -211,11 +272,20 @@ std::vector<std::string> TomlTable::keys() const
   return names;
 }
 
+void TomlTable::only(std::initializer_list<std::string_view> allowed) const
+{
+  for (const auto& [key, value] : *m_table)
+    if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())
+      fail("{}: unknown key '{}' in {}", location(std::string(key.str())), key.str(),
+           m_label.empty() ? "the top level" : m_label);
+}
+
 void TomlTable::reject_unknown_keys() const
 {
   for (const auto& [key, value] : *m_table)
     if (m_read.count(std::string(key.str())) == 0)
-      fail("{}: unknown key '{}'", m_where, key.str());
+      fail("{}: unknown key '{}' in {}", location(std::string(key.str())), key.str(),
+           m_label.empty() ? "the top level" : m_label);
 }
 
-} // namespace ligsim::sim
+} // namespace ligsim
