@@ -22,7 +22,8 @@ MARKER = re.compile(r"<!--\s*doc-test:\s*(check-only|short)\b(.*?)-->")
 
 
 def pages_in_order(source):
-    """README.md, then the guide's pages in the order of docs/README.md, then any others."""
+    """README.md, then the guide's pages in the order of docs/README.md, then any others, then
+    the benchmark records of docs/validation/."""
     docs = os.path.join(source, "docs")
     order = ["README.md", "docs/README.md"]
     with open(os.path.join(docs, "README.md"), encoding="utf-8") as index:
@@ -32,6 +33,10 @@ def pages_in_order(source):
     for name in sorted(os.listdir(docs)):
         if name.endswith(".md") and "docs/" + name not in order:
             order.append("docs/" + name)
+    records = os.path.join(docs, "validation")  # benchmark records (tests/bench/record.sh)
+    if os.path.isdir(records):
+        order += ["docs/validation/" + name for name in sorted(os.listdir(records))
+                  if name.endswith(".md")]
     return order
 
 
