@@ -1,7 +1,8 @@
 #!/bin/sh
 # The four-ligament knee swept 0-120 degrees free against the same knee on the prescribed passive
 # path (data/hra-knee/flexion.toml), one after the other on one machine: wall and CPU seconds of
-# each and their ratio (issue 37's benchmark; docs/knee-model.md, "The HRA knees free").
+# each and their ratio (issue 37's benchmark; docs/knee-model.md, "The HRA knees free"), as
+# Markdown: tests/bench/record.sh writes it as docs/validation/free-vs-prescribed.md.
 #
 #   tests/bench/free_vs_prescribed.sh MODEL OUT [LIGSIM]
 set -eu
@@ -32,4 +33,5 @@ for name in prescribed free; do
 done
 read -r pw pu ps <"$out/prescribed.time"
 read -r fw fu fs <"$out/free.time"
-echo "free / prescribed: wall $(echo "scale=2; $fw / $pw" | bc), CPU $(echo "scale=2; ($fu + $fs) / ($pu + $ps)" | bc)"
+echo
+echo "Free / prescribed: wall $(echo "scale=2; $fw / $pw" | bc), CPU $(echo "scale=2; ($fu + $fs) / ($pu + $ps)" | bc)."

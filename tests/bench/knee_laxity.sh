@@ -3,7 +3,8 @@
 # knees: the knee flexed free to 0, 15 and 30 degrees, unloaded (20 N of compression), then under
 # a 100 N anterior or posterior force, a 10 N m valgus or varus moment, a 5 N m internal or
 # external moment; then with the ACL cut, unloaded, under the anterior force and under the valgus
-# moment (Lujan et al., J Biomech Eng 2007;129:386). Prints the tables of docs/knee-model.md.
+# moment (Lujan et al., J Biomech Eng 2007;129:386). Prints the tables as Markdown:
+# tests/bench/record.sh writes them as docs/validation/knee-laxity.md.
 #
 #   tests/bench/knee_laxity.sh MODEL OUT [LIGSIM]
 #
