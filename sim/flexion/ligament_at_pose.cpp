@@ -5,6 +5,7 @@
 #include "sim/solver/condensed_stiffness.hpp"
 
 #include <array>
+#include <cmath>
 
 namespace ligsim::sim {
 
@@ -81,12 +82,17 @@ bool LigamentAtPose::move_to(const JointPose& pose)
   };
   // At the same flexion, from the pose the response was computed at: start from the
   // equilibrium it predicts (the solve then needs fewer steps), and from the last one if that
-  // start cannot be solved (a predicted node inside a bone).
-  const bool predicted = m_response_pose && m_response_pose->flexion_deg == m_pose.flexion_deg &&
-                         free_coordinates(*m_response_pose) == free_coordinates(m_pose) &&
-                         pose.flexion_deg == m_pose.flexion_deg;
-  if (predicted)
+  // start is no state (an element inverted) or cannot be solved (a predicted node inside a bone).
+  bool predicted = m_response_pose && m_response_pose->flexion_deg == m_pose.flexion_deg &&
+                   free_coordinates(*m_response_pose) == free_coordinates(m_pose) &&
+                   pose.flexion_deg == m_pose.flexion_deg;
+  if (predicted) {
     m_x += m_response * (free_coordinates(pose) - free_coordinates(m_pose));
+    if (!std::isfinite(m_body->energy(m_x).energy)) {
+      m_x = saved; // the guess inverts an element: the last equilibrium is the better start
+      predicted = false;
+    }
+  }
   StaticResult result = solve();
   if (!result.converged && predicted) {
     m_x = saved;

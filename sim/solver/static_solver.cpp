@@ -84,6 +84,14 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   const ExtraPotential* extra = m_engine.extra_potential();
   NewtonEngine::Evaluation at;
   m_engine.evaluate(x, extra ? m_converged_t : t1, at);
+  if (!std::isfinite(at.body.energy)) {
+    // No stiffness to predict with (an inverted element has none): a caller's guess of the
+    // start that cannot be a state.
+    m_failure = fmt::format("moving the prescribed nodes to load factor {:.4g}: the state they "
+                            "move from is not admissible ({})",
+                            t1, m_engine.describe_inversion(at.body));
+    return false;
+  }
   if (extra)
     at.gradient -= (t1 - m_converged_t) * m_external;
   Eigen::VectorXd coupling = Eigen::VectorXd::Zero(m_dofs.dof_count());

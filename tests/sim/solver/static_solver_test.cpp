@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 using namespace ligsim::sim;
 
 namespace {
@@ -110,6 +113,41 @@ TEST(StaticSolver, RigidMotionOfTheWholeBoundaryCostsNoEnergy)
     const Eigen::Vector3d expected = motion.apply(mesh.V.row(n).transpose(), 1.0);
     EXPECT_LT((solved.x.segment<3>(3 * n) - expected).norm(), 1e-8) << "node " << n;
   }
+}
+
+TEST(StaticSolver, AMoveFromAStateWithAnInvertedElementFailsSayingSo)
+{
+  // The prescribed nodes' move predicts the free ones from the stiffness at the start: an
+  // inverted element there has none (its Hessian was once read uninitialised).
+  const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
+  const HyperelasticBody body(mesh, mcl_material(), along_z());
+  BoundaryConditions conditions;
+  ConstraintSet surface;
+  surface.name = "surface";
+  int inside = -1;
+  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
+    const Eigen::Vector3d p = mesh.V.row(n);
+    if ((p.array() < 1e-9).any() || (p.array() > 1 - 1e-9).any())
+      surface.nodes.push_back(static_cast<int>(n));
+    else
+      inside = static_cast<int>(n);
+  }
+  RigidMotion motion;
+  motion.translation_mm = Eigen::Vector3d(0.1, 0, 0);
+  surface.rigid = motion;
+  conditions.constraints.push_back(surface);
+  NewtonSettings settings;
+  settings.load_steps = 1;
+  settings.max_cutbacks = 2;
+  StaticSolver solver(body, conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  x.segment<3>(3 * inside) += Eigen::Vector3d(2, 2, 2);
+  ASSERT_FALSE(std::isfinite(body.energy(x).energy));
+  const StaticResult result = solver.solve(x);
+  EXPECT_FALSE(result.converged);
+  EXPECT_NE(result.failure.find("the state they move from is not admissible (element "),
+            std::string::npos)
+      << result.failure;
 }
 
 TEST(StaticSolver, CutsBackALoadStepThatFails)
