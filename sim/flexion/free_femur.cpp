@@ -168,20 +168,10 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
     FreeAngle at;
     at.angle_deg = angle;
     std::string failure;
-    // The path so far, carried on linearly: a first guess most of the way to the next pose.
-    bool moved = false;
-    if (a >= 2) {
-      const FreeAngle& one = result.angles[a - 1];
-      const FreeAngle& two = result.angles[a - 2];
-      const double ratio = (angle - one.angle_deg) / (one.angle_deg - two.angle_deg);
-      const Vector5d guess = q + ratio * (q - free_coordinates(two.pose));
-      std::string ignored;
-      if (runaway(guess, settings) < 0 && knee.move(angle, guess, ignored)) {
-        q = guess;
-        moved = true;
-      }
-    }
-    if (!moved && !knee.move(angle, q, failure)) {
+    // From the last angle's pose. (Carrying the path on linearly from the last two angles
+    // started the ligaments' first move 30 degrees away from an overshot pose: the sweep took
+    // 1.3 times as long.)
+    if (!knee.move(angle, q, failure)) {
       result.failure = fmt::format("flexion to {} deg: {}", angle, failure);
       return result;
     }
