@@ -30,14 +30,27 @@ struct Knee {
   const JointCoordinateSystem& jcs;
   const FreeKneeSettings& settings;
 
-  /// Moves every ligament to (flexion, q), all at once; all or none: on a failure the ones
-  /// that moved go back.
+  /// Every ligament's equilibrium now.
+  std::vector<LigamentAtPose::Equilibrium> equilibria() const
+  {
+    std::vector<LigamentAtPose::Equilibrium> all;
+    for (const LigamentAtPose& l : ligaments)
+      all.push_back(l.equilibrium());
+    return all;
+  }
+
+  void restore(const std::vector<LigamentAtPose::Equilibrium>& all)
+  {
+    for (std::size_t i = 0; i < ligaments.size(); ++i)
+      ligaments[i].restore(all[i]);
+  }
+
+  /// Moves every ligament to (flexion, q), all at once; all or none: on a failure they are put
+  /// back where they were.
   bool move(double flexion_deg, const Vector5d& q, std::string& failure)
   {
     const JointPose target = joint_pose_of(flexion_deg, q);
-    std::vector<JointPose> before;
-    for (const LigamentAtPose& l : ligaments)
-      before.push_back(l.pose());
+    const std::vector<LigamentAtPose::Equilibrium> before = equilibria();
     std::vector<char> moved(ligaments.size());
     parallel_tasks(ligaments.size(),
                    [&](std::size_t i) { moved[i] = ligaments[i].move_to(target) ? 1 : 0; });
@@ -45,10 +58,7 @@ struct Knee {
     if (failed == moved.end())
       return true;
     failure = ligaments[static_cast<std::size_t>(failed - moved.begin())].failure();
-    parallel_tasks(ligaments.size(), [&](std::size_t i) {
-      if (moved[i])
-        ligaments[i].move_to(before[i]);
-    });
+    restore(before);
     return false;
   }
 
@@ -216,10 +226,15 @@ FreeFemurResult find_free_path(std::vector<LigamentAtPose>& ligaments,
           hessian.cwiseQuotient(scale * scale.transpose()); // d^2 / (dq_k s_k dq_l s_l)
       const Vector5d direction =
           newton_direction(scaled_hessian, scaled, settings.max_step_mm).cwiseQuotient(scale);
-      // Backtracking on the knee's potential energy.
+      // Backtracking on the knee's potential energy, each trial from the equilibrium at q (the
+      // ligaments' solves then start from the equilibrium their stiffness predicts, where from
+      // the rejected longer step an MCL took up to 106 Newton iterations).
+      const std::vector<LigamentAtPose::Equilibrium> at_q = knee.equilibria();
       double step = 1.0;
       bool accepted = false;
       for (int trial = 0; trial < max_line_search && !accepted; ++trial, step *= 0.5) {
+        if (trial > 0)
+          knee.restore(at_q);
         const Vector5d candidate = q + step * direction;
         if (const int k = runaway(candidate, settings); k >= 0) {
           if (trial + 1 < max_line_search)

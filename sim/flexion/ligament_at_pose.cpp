@@ -110,6 +110,14 @@ bool LigamentAtPose::move_to(const JointPose& pose)
   return true;
 }
 
+void LigamentAtPose::restore(const Equilibrium& equilibrium)
+{
+  m_pose = equilibrium.pose;
+  m_x = equilibrium.positions;
+  m_residual = equilibrium.residual;
+  m_segment->set(m_pose, m_pose);
+}
+
 double LigamentAtPose::energy() const
 {
   double e = m_body->energy(m_x).energy;

@@ -40,6 +40,13 @@ public:
   /// it cannot, leaving the last equilibrium and its pose.
   bool move_to(const JointPose& pose);
   const JointPose& pose() const { return m_pose; }
+  /// An equilibrium found, to come back to without solving again.
+  struct Equilibrium {
+    JointPose pose;
+    Eigen::VectorXd positions, residual;
+  };
+  Equilibrium equilibrium() const { return {m_pose, m_x, m_residual}; }
+  void restore(const Equilibrium& equilibrium);
   /// The nodes' positions at equilibrium at pose() (flat, mm).
   const Eigen::VectorXd& positions() const { return m_x; }
   const std::string& failure() const { return m_failure; }
