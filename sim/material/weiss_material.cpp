@@ -187,11 +187,16 @@ ElementMeasures WeissMaterial::measures(const TetCorners& Q, const TetShape& sha
 
 bool project_to_psd(Matrix12d& H)
 {
-  // The element's energy is unchanged by a translation, so H = P^T G P with G its block of the
-  // last three nodes (their motion relative to the first; P is onto) and H is positive
-  // semi-definite where G is positive definite: a 9x9 Cholesky settles those elements without
-  // the 12x12 eigen-decomposition (4.5 % of a free knee sweep's time).
-  if (Eigen::LLT<Eigen::Matrix<double, 9, 9>>(H.bottomRightCorner<9, 9>()).info() == Eigen::Success)
+  // An element's energy is unchanged by a translation, so its Hessian is H = P^T G P with G the
+  // block of the last three nodes (their motion relative to the first; P is onto), and H is
+  // positive semi-definite where G is positive definite: a 9x9 Cholesky settles those elements
+  // without the 12x12 eigen-decomposition (4.5 % of a free knee sweep's time). Any other matrix
+  // goes to the decomposition.
+  Eigen::Matrix<double, 12, 3> translated = Eigen::Matrix<double, 12, 3>::Zero();
+  for (int node = 0; node < 4; ++node)
+    translated += H.middleCols<3>(3 * node);
+  if (translated.cwiseAbs().maxCoeff() <= 1e-12 * H.cwiseAbs().maxCoeff() &&
+      Eigen::LLT<Eigen::Matrix<double, 9, 9>>(H.bottomRightCorner<9, 9>()).info() == Eigen::Success)
     return false;
   Eigen::SelfAdjointEigenSolver<Matrix12d> eigen(H);
   const auto& values = eigen.eigenvalues();

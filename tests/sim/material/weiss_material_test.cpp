@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -207,6 +208,39 @@ TEST(WeissMaterial, BadParametersAreRejected)
   parameters = mcl_material();
   parameters.fiber->lambda_star = 0.99;
   EXPECT_THROW(WeissMaterial{parameters}, ligsim::InputError);
+}
+
+TEST(PsdProjection, AnElementsHessianProjectsAsItsEigenvaluesSay)
+{
+  // project_to_psd settles an element whose Hessian is PSD by a Cholesky of one 9x9 block,
+  // relying on the Hessian annihilating translations: stretched, compressed and sheared, the
+  // result must be the eigen-decomposition's. A stiff bulk makes most states indefinite (their
+  // rotation modes feel the pressure); a slightly dilated element is PSD.
+  const WeissMaterial m(mcl_material());
+  const TetCorners P = rest_corners();
+  const TetShape shape = tet_shape(P);
+  const Eigen::Vector3d a = Eigen::Vector3d(0.3, 0.2, 1.0).normalized();
+  int indefinite = 0, definite = 0;
+  for (const double lambda : {0.6, 0.8, 0.95, 1.0, 1.03, 1.08, 1.2})
+    for (const double J : {0.9, 1.0, 1.002, 1.005, 1.02, 1.1}) {
+      ElementEvaluation at;
+      m.evaluate(deformed(P, a, lambda, J, 11), shape, a, ElementNeeds::hessian, at);
+      const Eigen::SelfAdjointEigenSolver<Matrix12d> eigen(at.hessian);
+      const double size = at.hessian.cwiseAbs().maxCoeff();
+      const Matrix12d clamped = eigen.eigenvectors() *
+                                eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                                eigen.eigenvectors().transpose();
+      Matrix12d projected = at.hessian;
+      const bool changed = project_to_psd(projected);
+      EXPECT_LT((projected - clamped).cwiseAbs().maxCoeff(), 1e-9 * size) << lambda << " " << J;
+      const bool negative = eigen.eigenvalues().minCoeff() < -1e-9 * size;
+      // Indefinite: projected; PSD (its translation and rotation modes zero to round-off): left
+      // as it is, where the eigenvalues' round-off alone would count it as projected.
+      EXPECT_EQ(changed, negative) << lambda << " " << J;
+      (negative ? indefinite : definite) += 1;
+    }
+  EXPECT_GT(indefinite, 0); // both kinds were met
+  EXPECT_GT(definite, 0);
 }
 
 TEST(PsdProjection, ClampsNegativeEigenvaluesOnly)
