@@ -54,6 +54,22 @@ Solved pull_in_one_step(int cells, double per_node_n, int max_iterations,
   return solve(body, conditions, settings);
 }
 
+/// The unit cube's surface nodes moved as one rigid body by `motion`.
+BoundaryConditions surface_moved(const ligsim::TetMesh& mesh, const RigidMotion& motion)
+{
+  ConstraintSet surface;
+  surface.name = "surface";
+  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
+    const Eigen::Vector3d p = mesh.V.row(n);
+    if ((p.array() < 1e-9).any() || (p.array() > 1 - 1e-9).any())
+      surface.nodes.push_back(static_cast<int>(n));
+  }
+  surface.rigid = motion;
+  BoundaryConditions conditions;
+  conditions.constraints.push_back(surface);
+  return conditions;
+}
+
 } // namespace
 
 TEST(StaticSolver, ReactionsBalanceTheLoad)
@@ -89,21 +105,12 @@ TEST(StaticSolver, RigidMotionOfTheWholeBoundaryCostsNoEnergy)
 {
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  BoundaryConditions conditions;
-  ConstraintSet surface;
-  surface.name = "surface";
-  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
-    const Eigen::Vector3d p = mesh.V.row(n);
-    if ((p.array() < 1e-9).any() || (p.array() > 1 - 1e-9).any())
-      surface.nodes.push_back(static_cast<int>(n));
-  }
   RigidMotion motion;
   motion.axis = Eigen::Vector3d(1, 1, 0).normalized();
   motion.point_mm = Eigen::Vector3d(2, 0, 0);
   motion.angle_rad = 1.5;
   motion.translation_mm = Eigen::Vector3d(0.5, -1, 2);
-  surface.rigid = motion;
-  conditions.constraints.push_back(surface);
+  const BoundaryConditions conditions = surface_moved(mesh, motion);
   NewtonSettings settings;
   settings.load_steps = 6;
   const Solved solved = solve(body, conditions, settings);
@@ -121,21 +128,11 @@ TEST(StaticSolver, AMoveFromAStateWithAnInvertedElementFailsSayingSo)
   // inverted element there has none (its Hessian was once read uninitialised).
   const ligsim::TetMesh mesh = structured_cube_mesh(3, 1.0);
   const HyperelasticBody body(mesh, mcl_material(), along_z());
-  BoundaryConditions conditions;
-  ConstraintSet surface;
-  surface.name = "surface";
-  int inside = -1;
-  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n) {
-    const Eigen::Vector3d p = mesh.V.row(n);
-    if ((p.array() < 1e-9).any() || (p.array() > 1 - 1e-9).any())
-      surface.nodes.push_back(static_cast<int>(n));
-    else
-      inside = static_cast<int>(n);
-  }
   RigidMotion motion;
   motion.translation_mm = Eigen::Vector3d(0.1, 0, 0);
-  surface.rigid = motion;
-  conditions.constraints.push_back(surface);
+  const BoundaryConditions conditions = surface_moved(mesh, motion);
+  const int inside = 21; // (1, 1, 1) of the 4 x 4 x 4 nodes: not on the surface
+  ASSERT_LT((mesh.V.row(inside).array() - 1.0 / 3.0).abs().maxCoeff(), 1e-12);
   NewtonSettings settings;
   settings.load_steps = 1;
   settings.max_cutbacks = 2;
