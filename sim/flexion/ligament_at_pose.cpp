@@ -80,19 +80,13 @@ bool LigamentAtPose::move_to(const JointPose& pose)
     return m_solver->solve(m_x, [&](const StepReport&, const Eigen::VectorXd&,
                                     const Eigen::VectorXd& r) { residual = r; });
   };
-  // At the same flexion, from the pose the response was computed at: start from the
-  // equilibrium it predicts (the solve then needs fewer steps), and from the last one if that
-  // start is no state (an element inverted) or cannot be solved (a predicted node inside a bone).
-  bool predicted = m_response_pose && m_response_pose->flexion_deg == m_pose.flexion_deg &&
-                   free_coordinates(*m_response_pose) == free_coordinates(m_pose) &&
-                   pose.flexion_deg == m_pose.flexion_deg;
-  if (predicted) {
-    m_x += m_response * (free_coordinates(pose) - free_coordinates(m_pose));
-    if (!std::isfinite(m_body->energy(m_x).energy)) {
-      m_x = saved; // the guess inverts an element: the last equilibrium is the better start
-      predicted = false;
-    }
-  }
+  // Near the pose the response was computed at: start from the equilibrium it predicts (the
+  // solve then needs fewer steps), and from the last one if that start is no state (an element
+  // inverted) or cannot be solved (a predicted node inside a bone).
+  const std::optional<Eigen::VectorXd> guess = predicted_positions(pose);
+  const bool predicted = guess && std::isfinite(m_body->energy(*guess).energy);
+  if (predicted)
+    m_x = *guess;
   StaticResult result = solve();
   if (!result.converged && predicted) {
     m_x = saved;
@@ -108,6 +102,27 @@ bool LigamentAtPose::move_to(const JointPose& pose)
   m_segment->set(pose, pose);
   m_residual = residual;
   return true;
+}
+
+std::optional<Eigen::VectorXd> LigamentAtPose::predicted_positions(const JointPose& pose) const
+{
+  if (!m_response_pose || m_response_pose->flexion_deg != m_pose.flexion_deg ||
+      free_coordinates(*m_response_pose) != free_coordinates(m_pose) ||
+      pose.flexion_deg != m_pose.flexion_deg)
+    return std::nullopt;
+  Eigen::VectorXd x = m_x + m_response * (free_coordinates(pose) - free_coordinates(m_pose));
+  // The response moves the free nodes only; the femoral footprint goes with the femur (left
+  // behind, it shears the elements between them by the whole move, and a few degrees invert
+  // them).
+  // (As the solver's path puts it at its end, to the bit: a round-off shift left would cost the
+  // solve a predictor.)
+  PoseSegment path(m_jcs);
+  path.set(m_pose, pose);
+  const Eigen::Isometry3d femur = path.pose(1.0);
+  const Points& rest = m_body->mesh().V;
+  for (int n : m_conditions.constraints[kFemurSet].nodes)
+    x.segment<3>(3 * n) = femur * Eigen::Vector3d(rest.row(n).transpose());
+  return x;
 }
 
 void LigamentAtPose::restore(const Equilibrium& equilibrium)

@@ -40,6 +40,9 @@ public:
   /// it cannot, leaving the last equilibrium and its pose.
   bool move_to(const JointPose& pose);
   const JointPose& pose() const { return m_pose; }
+  /// The equilibrium at `pose` to first order, from the current one and the nodes' response that
+  /// stiffness() computed at pose(); none when there is no such response or the flexion differs.
+  std::optional<Eigen::VectorXd> predicted_positions(const JointPose& pose) const;
   /// An equilibrium found, to come back to without solving again.
   struct Equilibrium {
     JointPose pose;

@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <optional>
 
 using namespace ligsim;
 using namespace ligsim::sim;
@@ -39,6 +41,34 @@ std::filesystem::path cache()
   return std::filesystem::temp_directory_path() / "ligsim_free_femur_cache";
 }
 
+/// The ligament's generalized force and stiffness at (flexion, q) against central differences,
+/// steps h, of its equilibrium energy and of the force; the stiffness within
+/// `stiffness_tolerance` of its norm. Returns the stiffness.
+Matrix5d expect_derivatives_of_energy(LigamentAtPose& bar, double flexion, const Vector5d& q,
+                                      const Vector5d& h, double stiffness_tolerance)
+{
+  const FreePose pose(bar_joint(), flexion, q);
+  const Vector5d g = bar.generalized_force(pose);
+  const Matrix5d K = bar.stiffness(pose);
+  for (int k = 0; k < 5; ++k) {
+    Vector5d plus = q, minus = q;
+    plus(k) += h(k);
+    minus(k) -= h(k);
+    EXPECT_TRUE(bar.move_to(joint_pose_of(flexion, plus))) << bar.failure();
+    const double e_plus = bar.energy();
+    const Vector5d g_plus = bar.generalized_force(FreePose(bar_joint(), flexion, plus));
+    EXPECT_TRUE(bar.move_to(joint_pose_of(flexion, minus))) << bar.failure();
+    const double e_minus = bar.energy();
+    const Vector5d g_minus = bar.generalized_force(FreePose(bar_joint(), flexion, minus));
+    EXPECT_NEAR(g(k), (e_plus - e_minus) / (2.0 * h(k)), 1e-4 * g.norm() + 1e-6) << k;
+    const Vector5d column = (g_plus - g_minus) / (2.0 * h(k));
+    EXPECT_LT((K.col(k) - column).norm(), stiffness_tolerance * K.norm()) << k << "\n"
+                                                                          << K << "\n"
+                                                                          << column;
+  }
+  return K;
+}
+
 } // namespace
 
 TEST(FreeFemur, ALigamentsForceAndStiffnessAreTheDerivativesOfItsEnergy)
@@ -51,25 +81,9 @@ TEST(FreeFemur, ALigamentsForceAndStiffnessAreTheDerivativesOfItsEnergy)
   q << 0.03, -0.04, 0.2, -0.3, -0.25;
   const double flexion = 20.0;
   ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, q))) << bar.failure();
-  const FreePose pose(bar_joint(), flexion, q);
-  const Vector5d g = bar.generalized_force(pose);
-  const Matrix5d K = bar.stiffness(pose);
   // Steps in each coordinate, rotations scaled to move points near the joint alike.
   const Vector5d h = (Vector5d() << 1e-5, 1e-5, 2e-4, 2e-4, 2e-4).finished();
-  for (int k = 0; k < 5; ++k) {
-    Vector5d plus = q, minus = q;
-    plus(k) += h(k);
-    minus(k) -= h(k);
-    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, plus)));
-    const double e_plus = bar.energy();
-    const Vector5d g_plus = bar.generalized_force(FreePose(bar_joint(), flexion, plus));
-    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, minus)));
-    const double e_minus = bar.energy();
-    const Vector5d g_minus = bar.generalized_force(FreePose(bar_joint(), flexion, minus));
-    EXPECT_NEAR(g(k), (e_plus - e_minus) / (2.0 * h(k)), 1e-4 * g.norm() + 1e-6) << k;
-    const Vector5d column = (g_plus - g_minus) / (2.0 * h(k));
-    EXPECT_LT((K.col(k) - column).norm(), 1e-3 * K.norm()) << k << "\n" << K << "\n" << column;
-  }
+  const Matrix5d K = expect_derivatives_of_energy(bar, flexion, q, h, 1e-3);
   EXPECT_LT((K - K.transpose()).norm(), 1e-9 * K.norm());
 }
 
@@ -95,24 +109,42 @@ TEST(FreeFemur, TheContactOfTheMovingFemurEntersBothDerivativesExactly)
   q << 0.01, -0.02, 0.05, -0.05, -0.05;
   const double flexion = 4.0;
   ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, q))) << bar.failure();
-  const FreePose pose(bar_joint(), flexion, q);
-  const Vector5d g = bar.generalized_force(pose);
-  const Matrix5d K = bar.stiffness(pose);
   const Vector5d h = (Vector5d() << 1e-6, 1e-6, 2e-5, 2e-5, 2e-5).finished();
-  for (int k = 0; k < 5; ++k) {
-    Vector5d plus = q, minus = q;
-    plus(k) += h(k);
-    minus(k) -= h(k);
-    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, plus)));
-    const double e_plus = bar.energy();
-    const Vector5d g_plus = bar.generalized_force(FreePose(bar_joint(), flexion, plus));
-    ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, minus)));
-    const double e_minus = bar.energy();
-    const Vector5d g_minus = bar.generalized_force(FreePose(bar_joint(), flexion, minus));
-    EXPECT_NEAR(g(k), (e_plus - e_minus) / (2.0 * h(k)), 1e-4 * g.norm() + 1e-6) << k;
-    const Vector5d column = (g_plus - g_minus) / (2.0 * h(k));
-    EXPECT_LT((K.col(k) - column).norm(), 2e-3 * K.norm()) << k << "\n" << K << "\n" << column;
+  expect_derivatives_of_energy(bar, flexion, q, h, 2e-3);
+}
+
+TEST(FreeFemur, ALigamentsPredictedEquilibriumIsRightToSecondOrderInThePosesStep)
+{
+  Progress::set_quiet(true);
+  // The guess a trial pose's solve starts from: the footprint with the femur, the free nodes by
+  // their first-order response. Halving the step must quarter its error (a footprint left where
+  // it was would only halve it).
+  const FlexionSettings settings = test::bar_settings(0.029);
+  LigamentAtPose bar(bar_ligament(), settings, bar_joint(), cache());
+  ASSERT_TRUE(bar.settle()) << bar.failure();
+  const double flexion = 20.0;
+  Vector5d q;
+  q << 0.03, -0.04, 0.2, -0.3, -0.25;
+  ASSERT_TRUE(bar.move_to(joint_pose_of(flexion, q))) << bar.failure();
+  const LigamentAtPose::Equilibrium at_q = bar.equilibrium();
+  Vector5d step;
+  step << 0.02, 0.01, 0.1, 0.1, -0.1;
+  double errors[2];
+  for (int halving = 0; halving < 2; ++halving) {
+    bar.restore(at_q);
+    bar.stiffness(FreePose(bar_joint(), flexion, q));
+    const JointPose target = joint_pose_of(flexion, q + std::ldexp(1.0, -halving) * step);
+    const std::optional<Eigen::VectorXd> guess = bar.predicted_positions(target);
+    ASSERT_TRUE(guess.has_value());
+    ASSERT_TRUE(bar.move_to(target)) << bar.failure();
+    errors[halving] = (*guess - bar.positions()).lpNorm<Eigen::Infinity>();
   }
+  EXPECT_GT(errors[1], 0.0);
+  EXPECT_LT(errors[1], 0.3 * errors[0]) << errors[0] << " " << errors[1];
+  // No guess across a change of flexion.
+  bar.restore(at_q);
+  bar.stiffness(FreePose(bar_joint(), flexion, q));
+  EXPECT_FALSE(bar.predicted_positions(joint_pose_of(flexion + 1.0, q)).has_value());
 }
 
 TEST(FreeFemur, APrestretchedBarPullsTheFreeFemurToWhereItsForceVanishes)
