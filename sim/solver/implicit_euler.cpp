@@ -119,9 +119,7 @@ bool ImplicitEuler::step(Eigen::VectorXd& x, Eigen::VectorXd& v, double h, doubl
   NewtonCounts counts;
   std::optional<NewtonEngine::Evaluation> current;
   const NewtonOutcome outcome = m_engine.minimise(x, t, policy, counts, current);
-  report.linear_iterations += counts.linear_iterations;
-  report.factorizations += counts.factorizations;
-  report.projected_elements += counts.projected_elements;
+  report.add(counts);
   if (outcome == NewtonOutcome::failed) {
     m_failure = counts.iterations == 0 && !std::isfinite(current->body.energy)
                     ? "moving the prescribed nodes: " + m_engine.failure()
@@ -206,10 +204,8 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
 {
   const auto start_time = std::chrono::steady_clock::now();
   DynamicResult result;
-  if (x.size() != m_dofs.dof_count() || !x.allFinite()) {
-    result.failure = "the initial positions are missing or not finite";
+  if (!valid_start(x, m_dofs.dof_count(), result.failure))
     return result;
-  }
   Eigen::VectorXd v = Eigen::VectorXd::Zero(x.size());
   const double h = m_settings.time_step_s;
   start(x);
@@ -223,9 +219,7 @@ DynamicResult ImplicitEuler::run(Eigen::VectorXd& x, const FrameCallback& on_fra
     report.load_factor = std::min(1.0, static_cast<double>(frame_number) / m_settings.ramp_frames);
     const bool done = frame(x, v, t_before, report, residual);
     result.substeps += report.substeps;
-    result.linear_iterations += report.linear_iterations;
-    result.factorizations += report.factorizations;
-    result.projected_elements += report.projected_elements;
+    result.add(report);
     if (!done) {
       result.failure = fmt::format("frame {} {}", frame_number, m_failure);
       result.wall_s = seconds_since(start_time);

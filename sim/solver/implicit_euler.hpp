@@ -49,7 +49,7 @@ struct DynamicsSettings {
   double iteration_tolerance = 0.03;
 };
 
-struct FrameReport {
+struct FrameReport : SolveCosts {
   int frame = 0; ///< 1-based
   double time_s = 0.0;
   double load_factor = 0.0;
@@ -60,23 +60,17 @@ struct FrameReport {
   double min_j = 1.0;
   int min_j_element = -1;
   int substeps = 1;
-  int linear_iterations = 0;
-  int factorizations = 0;
-  int projected_elements = 0;
   /// Whether each sub-step's implicit Euler equation held to iteration_tolerance when it ended
   /// (false only where max_iterations solves ran out first).
   bool equation_met = true;
   double wall_s = 0.0;
 };
 
-struct DynamicResult {
+struct DynamicResult : SolveCosts {
   bool completed = false; ///< ran all its frames (or reached equilibrium) without failure
   bool reached_equilibrium = false;
   std::string failure;
   int frames = 0;
-  int linear_iterations = 0;
-  int factorizations = 0;
-  int projected_elements = 0;
   int substeps = 0;
   double wall_s = 0.0;
 };

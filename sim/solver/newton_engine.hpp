@@ -54,6 +54,37 @@ struct NewtonCounts {
   std::string floor;
 };
 
+/// What a solve's Newton iterations cost, summed over its steps, sub-steps or frames.
+struct SolveCosts {
+  int newton_iterations = 0;
+  int linear_iterations = 0;  ///< CG iterations
+  int factorizations = 0;     ///< sparse Cholesky factorisations
+  int projected_elements = 0; ///< element stiffness projections
+  void add(const NewtonCounts& counts)
+  {
+    newton_iterations += counts.iterations;
+    linear_iterations += counts.linear_iterations;
+    factorizations += counts.factorizations;
+    projected_elements += counts.projected_elements;
+  }
+  void add(const SolveCosts& costs)
+  {
+    newton_iterations += costs.newton_iterations;
+    linear_iterations += costs.linear_iterations;
+    factorizations += costs.factorizations;
+    projected_elements += costs.projected_elements;
+  }
+};
+
+/// Whether `x` can start a solve of `dof_count` DOFs; if not, `failure` says why.
+inline bool valid_start(const Eigen::VectorXd& x, int dof_count, std::string& failure)
+{
+  if (x.size() == dof_count && x.allFinite())
+    return true;
+  failure = "the initial positions are missing or not finite";
+  return false;
+}
+
 /// The inertia of an implicit Euler step: 1/2 sum w_i (x_i - y_i)^2 over the free DOFs.
 struct InertiaTerm {
   Eigen::VectorXd weight; ///< per free DOF, N/mm: (1 + h alpha) m / h^2

@@ -158,19 +158,11 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
 {
   const auto start = std::chrono::steady_clock::now();
   StaticResult result;
-  if (x.size() != m_dofs.dof_count() || !x.allFinite()) {
-    result.failure = "the initial positions are missing or not finite";
+  if (!valid_start(x, m_dofs.dof_count(), result.failure))
     return result;
-  }
   const std::vector<double> targets = step_targets();
   const int steps = static_cast<int>(targets.size());
   m_engine.set_shifted(false); // a solve that failed before may have left it on
-  auto add_totals = [&](const StepReport& report) {
-    result.newton_iterations += report.iterations;
-    result.projected_elements += report.projected_elements;
-    result.linear_iterations += report.linear_iterations;
-    result.factorizations += report.factorizations;
-  };
   double t = 0.0;
   SubstepController substeps; // carried from one output step to the next
   // Tenths of the load factor on stderr once a solve has run for a second (a 20,000-tet cube
@@ -265,7 +257,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
         report.wall_s = seconds_since(step_start);
         report.load_factor = t;
         result.steps.push_back(report);
-        add_totals(report);
+        result.add(report);
         result.wall_s = seconds_since(start);
         return result;
       }
@@ -287,7 +279,7 @@ StaticResult StaticSolver::solve(Eigen::VectorXd& x, const StepCallback& on_step
       extra->energy(x, t_end, &gradient);
     std::tie(report.min_j, report.min_j_element) = m_body.min_j(x);
     report.wall_s = seconds_since(step_start);
-    add_totals(report);
+    result.add(report);
     result.steps.push_back(report);
     if (on_step)
       on_step(report, x, gradient);

@@ -58,7 +58,7 @@ struct StepReport : NewtonCounts {
   double wall_s = 0.0;
 };
 
-struct StaticResult {
+struct StaticResult : SolveCosts {
   bool converged = false;
   std::string failure; ///< why it stopped, naming the element where one is to blame
   /// How a failure stopped: "failed step" (no convergence), or a critical point of the path met
@@ -68,11 +68,7 @@ struct StaticResult {
   std::optional<StabilityMode> critical_mode;
   double critical_load_factor = 0.0; ///< the last converged load factor before it
   std::vector<StepReport> steps;
-  int newton_iterations = 0;
   int cutbacks = 0;
-  int projected_elements = 0;
-  int linear_iterations = 0;
-  int factorizations = 0;
   double wall_s = 0.0;
 };
 
