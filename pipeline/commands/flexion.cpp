@@ -289,11 +289,12 @@ void run_flexion(const FlexionJobOptions& options)
   for (const sim::LigamentModel& ligament : ligaments)
     parts.push_back({ligament.name, knee ? ligament.name : "", ligament.model.distal_bone});
   sim::FlexionOutput output(parts, bones, femur_motion, options.out);
-  // A one-ligament model keeps its own pictures (coloured by strain energy, with fibers).
-  std::optional<render::FlexionPictures> ligament_pictures;
-  if (!knee)
-    ligament_pictures.emplace(bones, output, motion.axis.axis, settings.image_angles_deg,
-                              options.out);
+  // Every ligament's own pictures (coloured by strain energy, with fibers) in its folder.
+  std::vector<render::FlexionPictures> ligament_pictures;
+  ligament_pictures.reserve(ligaments.size());
+  for (std::size_t l = 0; l < ligaments.size(); ++l)
+    ligament_pictures.emplace_back(ligaments[l].model, output, motion.axis.axis,
+                                   settings.image_angles_deg, options.out / parts[l].folder);
   render::KneePictures knee_pictures(bones, output, sim::effective_anatomy(bones, settings),
                                      motion.axis.axis, names, settings.image_angles_deg,
                                      options.out);
@@ -306,8 +307,7 @@ void run_flexion(const FlexionJobOptions& options)
         const fs::path written = output.write_angle(l, body, angle, x);
         if (settings.images) {
           knee_pictures.keep(l, angle, written);
-          if (ligament_pictures)
-            ligament_pictures->keep(angle, x, written);
+          ligament_pictures[l].keep(angle, x, written);
         }
         if (ligaments.size() > 1) {
           states[angle.angle_deg].resize(ligaments.size());
@@ -343,10 +343,6 @@ void run_flexion(const FlexionJobOptions& options)
     results["ligaments"][sweep.name] = ligament_results(sweep);
   if (ligaments.size() > 1)
     results["pairs"] = reports::to_json(sim::pairs_over_sweep(ligaments, states, options.out));
-  else { // a one-ligament model: its results at the top, and its setup, as before knees
-    results.update(results["ligaments"][sweeps.front().name]);
-    summary.stage("setup").update(reports::to_json(sweeps.front().setup));
-  }
   results["success"] = success;
   if (settings.mode == sim::FlexionMode::interactive)
     results["frames_per_second"] = sim::knee_frames_per_second(sweeps);
@@ -357,8 +353,8 @@ void run_flexion(const FlexionJobOptions& options)
   if (settings.images) {
     StageMeter picture_meter;
     images = knee_pictures.render();
-    if (ligament_pictures) {
-      const std::vector<fs::path> own = ligament_pictures->render(sweeps.front().result.angles);
+    for (std::size_t l = 0; l < ligament_pictures.size(); ++l) {
+      const std::vector<fs::path> own = ligament_pictures[l].render(sweeps[l].result.angles);
       images.insert(images.end(), own.begin(), own.end());
     }
     summary.add_stage("pictures", picture_meter, {{"files", images.size()}});

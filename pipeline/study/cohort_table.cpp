@@ -45,33 +45,24 @@ MemberRows read_member(const CohortMember& member, const std::vector<std::string
          e.what());
   }
   const nlohmann::json& results = summary.contains("results") ? summary["results"] : summary;
-  if (summary.value("job", "") != "flexion" ||
-      !(results.contains("ligaments") || results.contains("angles")))
-    fail("study cohort: member '{}': {} is not the summary of `ligsim flexion`", member.name,
-         file.string());
+  if (summary.value("job", "") != "flexion" || !results.contains("ligaments"))
+    fail("study cohort: member '{}': {} is not the summary of `ligsim flexion` (with "
+         "`results.ligaments`: one written before 2026-11-29 has a one-ligament model's results "
+         "at the top; run its flexion again)",
+         member.name, file.string());
   MemberRows rows;
   rows.name = member.name;
-  if (results.contains("ligaments")) {
-    // summary.json's objects are sorted by name: the sweep's order is in its parameters.
-    std::vector<std::string> order =
-        summary["parameters"].value("ligaments", std::vector<std::string>{});
-    for (const auto& [name, ligament] : results["ligaments"].items())
-      if (std::find(order.begin(), order.end(), name) == order.end())
-        order.push_back(name);
-    for (const std::string& name : order) {
-      const nlohmann::json& ligament = results["ligaments"][name];
-      rows.ligaments.push_back({name,
-                                ligament.value("setup", nlohmann::json::object()).value("tets", 0),
-                                ligament.value("success", false), ligament["angles"]});
-    }
-  } else { // written before knees: one ligament, its results at the top
-    LigamentRows only;
-    only.name = results.value("plausibility", nlohmann::json::object()).value("ligament", "");
-    only.success = results.value("success", false);
-    only.angles = results["angles"];
-    if (summary.contains("stages") && summary["stages"].contains("setup"))
-      only.tets = summary["stages"]["setup"].value("tets", 0);
-    rows.ligaments.push_back(only);
+  // summary.json's objects are sorted by name: the sweep's order is in its parameters.
+  std::vector<std::string> order =
+      summary["parameters"].value("ligaments", std::vector<std::string>{});
+  for (const auto& [name, ligament] : results["ligaments"].items())
+    if (std::find(order.begin(), order.end(), name) == order.end())
+      order.push_back(name);
+  for (const std::string& name : order) {
+    const nlohmann::json& ligament = results["ligaments"][name];
+    rows.ligaments.push_back({name,
+                              ligament.value("setup", nlohmann::json::object()).value("tets", 0),
+                              ligament.value("success", false), ligament["angles"]});
   }
   if (chosen.empty())
     return rows;

@@ -426,11 +426,6 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
 
   report["reference"] = {{"tets", reference_tets}, {"model", reference_key}};
   report["ligaments"] = ligaments;
-  if (!inputs.model.knee) { // a one-ligament model: its figures at the top, as before knees
-    report["thickness_mm"] = thickness.front();
-    if (ligaments.front().contains("richardson_energy"))
-      report["richardson_energy"] = ligaments.front()["richardson_energy"];
-  }
   nlohmann::json entries = nlohmann::json::array();
   for (const std::vector<Run>& ligament_runs : runs)
     for (const Run& run : ligament_runs)

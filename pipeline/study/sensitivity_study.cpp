@@ -284,10 +284,6 @@ nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs)
     for (const nlohmann::json& entry : t.variants)
       report["variants"].push_back(entry);
     report["ligaments"][names[l]] = {{"spread", t.spread}, {"factors", t.factors}};
-    if (!source.knee) { // a one-ligament model: its figures at the top, as before knees
-      report["spread"] = t.spread;
-      report["factors"] = t.factors;
-    }
   }
   write_text_atomically(inputs.out / "sensitivity.csv", csv);
   write_text_atomically(

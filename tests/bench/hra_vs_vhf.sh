@@ -20,7 +20,7 @@ OUT=$(cd "$OUT" && pwd)
 # shellcheck source=tests/bench/timed_runs.sh
 source "$SRC/tests/bench/timed_runs.sh"
 fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['frames_per_second'])" "$1"; }
-tets() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['setup']['tets'])" "$1"; }
+tets() { python3 -c "import json,sys; [l] = json.load(open(sys.argv[1]))['results']['ligaments'].values(); print(l['setup']['tets'])" "$1"; }
 
 rm -f "$OUT"/*.times "$OUT"/*.fps
 cd "$SRC"

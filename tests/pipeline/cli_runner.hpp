@@ -2,6 +2,8 @@
 /// Runs the built `ligsim` binary as a user would, capturing its exit code and stderr, and reads
 /// what it wrote.
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +87,15 @@ inline nlohmann::json read_json(const std::filesystem::path& file)
 {
   std::ifstream in(file);
   return nlohmann::json::parse(in);
+}
+
+/// A one-ligament model's results in a job's summary.json results (`results.ligaments`'s only
+/// entry).
+inline nlohmann::json only_ligament(const nlohmann::json& results)
+{
+  const nlohmann::json& ligaments = results.at("ligaments");
+  EXPECT_EQ(ligaments.size(), 1u) << ligaments.dump().substr(0, 200);
+  return ligaments.begin().value();
 }
 
 /// The lines of a text file (a CSV table, a log).

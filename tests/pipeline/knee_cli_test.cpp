@@ -240,6 +240,9 @@ TEST(KneeCli, PicturesShowTheWholeKneeFromTheFrontAndTheSide)
   for (const char* picture :
        {"knee_front_0.png", "knee_front_30.png", "knee_medial_0.png", "knee_medial_30.png"})
     EXPECT_GT(fs::file_size(out / picture), 10000u) << picture;
+  // Each ligament's own pictures in its folder, as a one-ligament model draws them.
+  for (const char* picture : {"A/ligament_0.png", "B/ligament_30.png", "C/strain_energy.png"})
+    EXPECT_GT(fs::file_size(out / picture), 10000u) << picture;
   // The ligaments' states in their folders, the bones once, all in one ParaView series.
   for (const char* file : {"A/ligament_30.vtu", "C/ligament_0.vtu", "femur_30.vtp", "tibia.vtp",
                            "fibula.vtp", "flexion.pvd"})
