@@ -13,8 +13,6 @@ namespace ligsim::sim {
 
 namespace {
 
-using Rows4x3 = Eigen::Matrix<double, 4, 3, Eigen::RowMajor>;
-
 /// Cofactor matrix of F, dJ/dF: its columns are the cross products of F's other two columns.
 Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F)
 {
@@ -25,9 +23,9 @@ Eigen::Matrix3d cofactor(const Eigen::Matrix3d& F)
   return C;
 }
 
-Eigen::Map<const Vector12d> flat(const Rows4x3& rows)
+template <int N> Eigen::Map<const Eigen::Matrix<double, 3 * N, 1>> flat(const NodeRows<N>& rows)
 {
-  return Eigen::Map<const Vector12d>(rows.data());
+  return Eigen::Map<const Eigen::Matrix<double, 3 * N, 1>>(rows.data());
 }
 
 } // namespace
@@ -44,7 +42,16 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
                              const Eigen::Vector3d& fiber, ElementNeeds needs,
                              ElementEvaluation& out) const
 {
-  const auto& D = shape.D;
+  evaluate_at_point<4>(Q, shape.D, shape.V0, fiber, needs, out);
+}
+
+// D and V0 are the header's G and weight, named as eq. 1-24 name them for a linear tet.
+template <int N>
+void WeissMaterial::evaluate_at_point(const NodeRows<N>& Q, const NodeRows<N>& D, double V0,
+                                      const Eigen::Vector3d& fiber, ElementNeeds needs,
+                                      NodalEvaluation<N>& out) const
+{
+  using Rows = NodeRows<N>;
   // Eq. 2: deformation gradient F = sum_i Q_i (outer) D_i.
   const Eigen::Matrix3d F = Q.transpose() * D;
   const double J = F.determinant();
@@ -74,7 +81,6 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   }
   const bool fiber_active = m_fiber_law && lambda >= 1.0;
 
-  const double V0 = shape.V0;
   out.energy = V0 * (0.5 * mu * (i1 - 3.0) + fiber_response.energy + volumetric.energy);
   if (needs == ElementNeeds::energy)
     return;
@@ -83,15 +89,15 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   // dJ/dQ_i = cof(F) D_i (eq. 7: (b x c)/(6 V0)), d trC/dQ_i = 2 F D_i (eq. 10),
   // d aCa/dQ_i = 2 (a . D_i) F a (eq. 16).
   const Eigen::Matrix3d cof = cofactor(F);
-  const Rows4x3 grad_j = D * cof.transpose();
-  const Rows4x3 grad_tr = 2.0 * D * F.transpose();
+  const Rows grad_j = D * cof.transpose();
+  const Rows grad_tr = 2.0 * D * F.transpose();
   const double s_j = -2.0 / 3.0 * s / J;        // d J^-2/3 / dJ
   const double s_jj = 10.0 / 9.0 * s / (J * J); // d^2 J^-2/3 / dJ^2 (eq. 12)
   // dF_C/dI4 = F_C'(lambda) / (2 lambda) (eq. 15), and d^2F_C/dI4^2 (eq. 19).
   double phi = 0.0;
   double psi = 0.0;
-  Eigen::Vector4d a_dot_d = Eigen::Vector4d::Zero();
-  Rows4x3 grad_aca = Rows4x3::Zero();
+  Eigen::Matrix<double, N, 1> a_dot_d = Eigen::Matrix<double, N, 1>::Zero();
+  Rows grad_aca = Rows::Zero();
   if (fiber_active) {
     phi = fiber_response.d1 / (2.0 * lambda);
     psi = fiber_response.d2 / (4.0 * lambda * lambda) -
@@ -106,10 +112,10 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   const double scale_a = phi * s;
   const double through_j = (0.5 * mu * trace_c + phi * aca);
   const double scale_j = through_j * s_j + volumetric.d1;
-  Rows4x3 gradient = scale_t * grad_tr + scale_j * grad_j;
+  Rows gradient = scale_t * grad_tr + scale_j * grad_j;
   if (fiber_active)
     gradient += scale_a * grad_aca;
-  out.gradient = V0 * flat(gradient);
+  out.gradient = V0 * flat<N>(gradient);
   if (needs == ElementNeeds::gradient)
     return;
 
@@ -119,18 +125,18 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   // + psi v v^T, v = dI4 = s daCa + aCa s_j dJ             eq. 19, first term
   // + (through_j s_j + F_V') d^2J                           eq. 8, 12, 24
   // + (mu s (D_i . D_j) + 2 phi s (a . D_i)(a . D_j)) 1      eq. 12 and 21
-  const auto dj = flat(grad_j);
-  Rows4x3 u_rows = s_j * 0.5 * mu * grad_tr;
+  const auto dj = flat<N>(grad_j);
+  Rows u_rows = s_j * 0.5 * mu * grad_tr;
   if (fiber_active)
     u_rows += s_j * phi * grad_aca;
-  const auto u = flat(u_rows);
-  Matrix12d& H = out.hessian;
+  const auto u = flat<N>(u_rows);
+  auto& H = out.hessian;
   H.noalias() = (through_j * s_jj + volumetric.d2) * dj * dj.transpose();
   H.noalias() += u * dj.transpose();
   H.noalias() += dj * u.transpose();
   if (fiber_active) {
-    const Rows4x3 v_rows = s * grad_aca + aca * s_j * grad_j;
-    const auto v = flat(v_rows);
+    const Rows v_rows = s * grad_aca + aca * s_j * grad_j;
+    const auto v = flat<N>(v_rows);
     H.noalias() += psi * v * v.transpose();
   }
   // d^2J/dQ_i dQ_j = -[w]x with w = F (D_i x D_j): the current edge opposite to i and j over
@@ -138,8 +144,8 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   const double scale_hj = through_j * s_j + volumetric.d1;
   const double diagonal_t = mu * s;
   const double diagonal_a = 2.0 * phi * s;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = i; j < 4; ++j) {
+  for (int i = 0; i < N; ++i) {
+    for (int j = i; j < N; ++j) {
       const double diagonal =
           diagonal_t * D.row(i).dot(D.row(j)) + diagonal_a * a_dot_d(i) * a_dot_d(j);
       for (int a = 0; a < 3; ++a)
@@ -166,6 +172,13 @@ void WeissMaterial::evaluate(const TetCorners& Q, const TetShape& shape,
   }
   H *= V0;
 }
+
+template void WeissMaterial::evaluate_at_point<4>(const NodeRows<4>&, const NodeRows<4>&, double,
+                                                  const Eigen::Vector3d&, ElementNeeds,
+                                                  NodalEvaluation<4>&) const;
+template void WeissMaterial::evaluate_at_point<10>(const NodeRows<10>&, const NodeRows<10>&, double,
+                                                   const Eigen::Vector3d&, ElementNeeds,
+                                                   NodalEvaluation<10>&) const;
 
 ElementMeasures WeissMaterial::measures(const TetCorners& Q, const TetShape& shape,
                                         const Eigen::Vector3d& fiber) const

@@ -1,6 +1,7 @@
 #pragma once
-/// @brief Strain energy of one linear tet, W = F_G(I1) + F_C(I4) + F_V(J) (eq. 5-6), with the
-/// forces and the 12x12 stiffness derived by hand through the node positions (eq. 7-24).
+/// @brief Strain energy W = F_G(I1) + F_C(I4) + F_V(J) (eq. 5-6) of one linear tet, or of one
+/// quadrature point of a higher-order element, with the forces and the stiffness derived by
+/// hand through the node positions (eq. 7-24).
 
 #include "sim/material/fiber_law.hpp"
 #include "sim/material/material_parameters.hpp"
@@ -15,18 +16,24 @@ namespace ligsim::sim {
 using Vector12d = Eigen::Matrix<double, 12, 1>;
 using Matrix12d = Eigen::Matrix<double, 12, 12>;
 
+/// Positions or shape-function gradients of an element's N nodes, row i = node i.
+template <int N> using NodeRows = Eigen::Matrix<double, N, 3, Eigen::RowMajor>;
+
 /// How much of the element to compute.
 enum class ElementNeeds { energy, gradient, hessian };
 
-/// One element's energy and derivatives. Entries are node-major: 3 i + component.
-struct ElementEvaluation {
+/// The energy and derivatives of an element of N nodes. Entries are node-major: 3 i + component.
+template <int N> struct NodalEvaluation {
   /// J <= 0 or not finite: nothing else is computed and the energy is +infinity.
   bool inverted = false;
-  double J = 1.0;
-  double energy = 0.0; ///< V0 W, N mm
-  Vector12d gradient;  ///< dE/dQ, N (the internal force is its negative)
-  Matrix12d hessian;   ///< d^2E/dQ^2, N/mm
+  double J = 1.0;      ///< at the point; the smallest over the points for a whole element
+  double energy = 0.0; ///< integral of W, N mm
+  Eigen::Matrix<double, 3 * N, 1> gradient;    ///< dE/dQ, N (the internal force is its negative)
+  Eigen::Matrix<double, 3 * N, 3 * N> hessian; ///< d^2E/dQ^2, N/mm
 };
+
+/// One linear tet's energy and derivatives.
+using ElementEvaluation = NodalEvaluation<4>;
 
 /// Per-element figures for outputs.
 struct ElementMeasures {
@@ -48,10 +55,19 @@ public:
   bool has_fibers() const { return m_fiber_law.has_value(); }
   const FiberLaw* fiber_law() const { return m_fiber_law ? &*m_fiber_law : nullptr; }
 
-  /// Evaluates the element with corners `Q` (mm). `fiber` is the element's fiber vector a
+  /// Evaluates the linear tet with corners `Q` (mm). `fiber` is the element's fiber vector a
   /// (|a| = 1 + in-situ strain), ignored when the material has no fibers.
   void evaluate(const TetCorners& Q, const TetShape& shape, const Eigen::Vector3d& fiber,
                 ElementNeeds needs, ElementEvaluation& out) const;
+
+  /// Evaluates W at one point of an element of N nodes at `Q` (mm), weighted by `weight` (mm^3):
+  /// F = sum_i Q_i (outer) G_i, with G_i the gradient of node i's shape function in the rest
+  /// shape at the point (1/mm). A linear tet is the case N = 4, G = D, weight = V0.
+  /// Instantiated for N = 4 and 10.
+  template <int N>
+  void evaluate_at_point(const NodeRows<N>& Q, const NodeRows<N>& G, double weight,
+                         const Eigen::Vector3d& fiber, ElementNeeds needs,
+                         NodalEvaluation<N>& out) const;
 
   ElementMeasures measures(const TetCorners& Q, const TetShape& shape,
                            const Eigen::Vector3d& fiber) const;

@@ -1,0 +1,24 @@
+#pragma once
+/// @brief The Weiss material integrated over one 10-node tet: the sum of its quadrature points.
+
+#include "sim/material/weiss_material.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace ligsim::sim {
+
+using QuadraticTetEvaluation = NodalEvaluation<10>;
+
+/// Evaluates the element with nodes `Q` (mm). `fibers` holds the fiber vector a (|a| = 1 +
+/// in-situ strain) at each of the shape's quadrature points, in their order, or one for all;
+/// it is ignored when the material has no fibers. The element is inverted when J is not
+/// positive at one of its points; `out.J` is the smallest J over them.
+void evaluate_quadratic_tet(const WeissMaterial& material, const QuadraticTetRows& Q,
+                            const QuadraticTetShape& shape,
+                            const std::vector<Eigen::Vector3d>& fibers, ElementNeeds needs,
+                            QuadraticTetEvaluation& out);
+
+} // namespace ligsim::sim
