@@ -18,13 +18,14 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Edges used by one triangle only: the surface is open there.
-long open_edges(const TriangleSurface& surface)
+int open_edges(const TriangleSurface& surface)
 {
   std::map<std::pair<int, int>, int> uses;
   for (Eigen::Index f = 0; f < surface.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       ++uses[std::minmax(surface.F(f, k), surface.F(f, (k + 1) % 3))];
-  return std::count_if(uses.begin(), uses.end(), [](const auto& edge) { return edge.second == 1; });
+  return static_cast<int>(
+      std::count_if(uses.begin(), uses.end(), [](const auto& edge) { return edge.second == 1; }));
 }
 
 } // namespace
@@ -66,7 +67,6 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;
     bone->penetration = std::make_unique<BonePenetration>(*triangles);
-    const LevelSetFigures& grid = bone->grid->figures();
     m_figures.bones.push_back({name, cache_dir / (name + ".vdb"), bone->grid->figures(),
                                triangles->F.rows(), open_edges(*triangles)});
     obstacles.push_back({name, bone->grid.get(), bone->motion, attached});

@@ -44,7 +44,7 @@ TEST(KneeReports, EachPairIsWrittenWithItsAngle)
 TEST(KneeReports, AnOverlapNotPushedSaysOnlyTheGapsBefore)
 {
   sim::OverlapReport report;
-  report.before.push_back({"femur", 0.3, 0, 12});
+  report.before.push_back({"femur", 0.3, 0, 12, {}});
   nlohmann::json json = reports::to_json(report);
   EXPECT_FALSE(json.at("pushed").get<bool>());
   EXPECT_DOUBLE_EQ(json.at("before").at("femur").at("min_gap_mm").get<double>(), 0.3);
