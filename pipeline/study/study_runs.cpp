@@ -60,7 +60,7 @@ FlexionFigures sweep_ligament(const sim::LigamentModel& ligament, const sim::Kne
 
   std::vector<double> volumes(static_cast<std::size_t>(body.element_count()));
   for (Eigen::Index e = 0; e < body.element_count(); ++e)
-    volumes[static_cast<std::size_t>(e)] = body.shape(e).V0;
+    volumes[static_cast<std::size_t>(e)] = body.element_volume(e);
   double measuring_s = 0.0;
   const sim::SweepResult sweep = sim::run_flexion_sweep(
       body, conditions, settings,

@@ -58,7 +58,7 @@ std::vector<FebioStep> febio_steps(const FebioLog& log, const FebProblem& proble
     const FebioRecord& energy =
         record_at(log, FebLogRecord::strain_energy, k, problem.settle_steps, step.angle_deg);
     for (int e = 0; e < body.element_count(); ++e)
-      step.logged_energy_mj += row_of(energy, e + 1, "element")[0] * body.shape(e).V0;
+      step.logged_energy_mj += row_of(energy, e + 1, "element")[0] * body.element_volume(e);
 
     // Record 2: x;y;z;qx;qy;qz;qw;Fx;Fy;Fz;...
     const FebioRecord& rigid =

@@ -240,7 +240,7 @@ FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd
   for (Eigen::Index e = 0; e < body.element_count(); ++e) {
     const ElementMeasures measures = body.measures(x, e);
     stretches[e] = measures.fiber_stretch;
-    const double v0 = body.shape(e).V0;
+    const double v0 = body.element_volume(e);
     volume += v0;
     weighted_stretch += v0 * measures.fiber_stretch;
     if (measures.fiber_stretch - 1.0 > failure_strain)
@@ -263,7 +263,7 @@ RegionalMean element_regions(const HyperelasticBody& body, double radius_mm)
   for (Eigen::Index e = 0; e < mesh.T.rows(); ++e) {
     centroids.row(e) = 0.25 * (mesh.V.row(mesh.T(e, 0)) + mesh.V.row(mesh.T(e, 1)) +
                                mesh.V.row(mesh.T(e, 2)) + mesh.V.row(mesh.T(e, 3)));
-    volumes[e] = body.shape(e).V0;
+    volumes[e] = body.element_volume(e);
   }
   return RegionalMean(centroids, volumes, radius_mm);
 }

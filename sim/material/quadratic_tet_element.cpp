@@ -8,13 +8,13 @@
 namespace ligsim::sim {
 
 void evaluate_quadratic_tet(const WeissMaterial& material, const QuadraticTetRows& Q,
-                            const QuadraticTetShape& shape,
-                            const std::vector<Eigen::Vector3d>& fibers, ElementNeeds needs,
+                            const QuadraticTetShape& shape, const Eigen::Vector3d* fibers,
+                            std::size_t fiber_count, ElementNeeds needs,
                             QuadraticTetEvaluation& out)
 {
   const std::size_t point_count = shape.points.size();
-  if (material.has_fibers() && fibers.size() != 1 && fibers.size() != point_count)
-    fail("the element has {} fiber vectors for {} quadrature points", fibers.size(), point_count);
+  if (material.has_fibers() && fiber_count != 1 && fiber_count != point_count)
+    fail("the element has {} fiber vectors for {} quadrature points", fiber_count, point_count);
   out.inverted = false;
   out.J = std::numeric_limits<double>::infinity();
   out.energy = 0.0;
@@ -25,7 +25,7 @@ void evaluate_quadratic_tet(const WeissMaterial& material, const QuadraticTetRow
   const Eigen::Vector3d no_fiber = Eigen::Vector3d::Zero();
   QuadraticTetEvaluation point;
   for (std::size_t q = 0; q < point_count; ++q) {
-    const Eigen::Vector3d& fiber = fibers.empty() ? no_fiber : fibers[fibers.size() == 1 ? 0 : q];
+    const Eigen::Vector3d& fiber = fiber_count == 0 ? no_fiber : fibers[fiber_count == 1 ? 0 : q];
     material.evaluate_at_point<10>(Q, shape.points[q].G, shape.points[q].weight, fiber, needs,
                                    point);
     out.J = std::min(out.J, point.J);

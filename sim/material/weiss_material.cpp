@@ -54,36 +54,26 @@ void WeissMaterial::evaluate_at_point(const NodeRows<N>& Q, const NodeRows<N>& D
   using Rows = NodeRows<N>;
   // Eq. 2: deformation gradient F = sum_i Q_i (outer) D_i.
   const Eigen::Matrix3d F = Q.transpose() * D;
-  const double J = F.determinant();
-  out.J = J;
-  out.inverted = !(J > 0.0) || !std::isfinite(J);
+  const PointState state = state_at(F, fiber);
+  out.J = state.J;
+  out.inverted = state.inverted;
   if (out.inverted) {
     out.energy = std::numeric_limits<double>::infinity();
     return;
   }
-  const double mu = m_parameters.mu_mpa;
-  const double trace_c = F.squaredNorm(); // tr C (eq. 3)
-  const double s = std::pow(J, -2.0 / 3.0);
-  const double i1 = s * trace_c; // eq. 6
-  const VolumetricResponse volumetric =
-      volumetric_response(m_parameters.volumetric, m_parameters.bulk_modulus_mpa, J);
-
-  // Fiber family (eq. 6, 14-21): I4 = J^-2/3 aCa = lambda^2.
-  Eigen::Vector3d fa = Eigen::Vector3d::Zero();
-  double aca = 0.0;
-  FiberResponse fiber_response;
-  double lambda = 0.0;
-  if (m_fiber_law) {
-    fa = F * fiber;
-    aca = fa.squaredNorm();
-    lambda = std::sqrt(s * aca);
-    fiber_response = m_fiber_law->evaluate(lambda);
-  }
-  const bool fiber_active = m_fiber_law && lambda >= 1.0;
-
-  out.energy = V0 * (0.5 * mu * (i1 - 3.0) + fiber_response.energy + volumetric.energy);
+  out.energy = V0 * state.energy_density;
   if (needs == ElementNeeds::energy)
     return;
+  const double mu = m_parameters.mu_mpa;
+  const double J = state.J;
+  const double trace_c = state.trace_c;
+  const double s = state.s;
+  const VolumetricResponse& volumetric = state.volumetric;
+  const Eigen::Vector3d& fa = state.fa;
+  const double aca = state.aca;
+  const double lambda = state.lambda;
+  const FiberResponse& fiber_response = state.fiber_response;
+  const bool fiber_active = m_fiber_law && lambda >= 1.0;
 
   // First derivatives of the scalar building blocks w.r.t. the 12 node coordinates:
   // dJ/dQ_i = cof(F) D_i (eq. 7: (b x c)/(6 V0)), d trC/dQ_i = 2 F D_i (eq. 10),
@@ -173,6 +163,32 @@ void WeissMaterial::evaluate_at_point(const NodeRows<N>& Q, const NodeRows<N>& D
   H *= V0;
 }
 
+WeissMaterial::PointState WeissMaterial::state_at(const Eigen::Matrix3d& F,
+                                                  const Eigen::Vector3d& fiber) const
+{
+  PointState state;
+  state.J = F.determinant();
+  state.inverted = !(state.J > 0.0) || !std::isfinite(state.J);
+  if (state.inverted)
+    return state;
+  const double mu = m_parameters.mu_mpa;
+  state.trace_c = F.squaredNorm(); // tr C (eq. 3)
+  state.s = std::pow(state.J, -2.0 / 3.0);
+  const double i1 = state.s * state.trace_c; // eq. 6
+  state.volumetric =
+      volumetric_response(m_parameters.volumetric, m_parameters.bulk_modulus_mpa, state.J);
+  // Fiber family (eq. 6, 14-21): I4 = J^-2/3 aCa = lambda^2.
+  if (m_fiber_law) {
+    state.fa = F * fiber;
+    state.aca = state.fa.squaredNorm();
+    state.lambda = std::sqrt(state.s * state.aca);
+    state.fiber_response = m_fiber_law->evaluate(state.lambda);
+  }
+  state.energy_density =
+      0.5 * mu * (i1 - 3.0) + state.fiber_response.energy + state.volumetric.energy;
+  return state;
+}
+
 template void WeissMaterial::evaluate_at_point<4>(const NodeRows<4>&, const NodeRows<4>&, double,
                                                   const Eigen::Vector3d&, ElementNeeds,
                                                   NodalEvaluation<4>&) const;
@@ -183,41 +199,50 @@ template void WeissMaterial::evaluate_at_point<10>(const NodeRows<10>&, const No
 ElementMeasures WeissMaterial::measures(const TetCorners& Q, const TetShape& shape,
                                         const Eigen::Vector3d& fiber) const
 {
-  ElementEvaluation evaluation;
-  evaluate(Q, shape, fiber, ElementNeeds::energy, evaluation);
+  return measures_at(Q.transpose() * shape.D, fiber);
+}
+
+ElementMeasures WeissMaterial::measures_at(const Eigen::Matrix3d& F,
+                                           const Eigen::Vector3d& fiber) const
+{
+  const PointState state = state_at(F, fiber);
   ElementMeasures result;
-  result.J = evaluation.J;
-  if (evaluation.inverted)
+  result.J = state.J;
+  if (state.inverted)
     return result;
-  result.energy_density_mpa = evaluation.energy / shape.V0;
+  result.energy_density_mpa = state.energy_density;
   if (m_fiber_law) {
-    const Eigen::Matrix3d F = Q.transpose() * shape.D;
     result.fiber_stretch = (F * fiber).norm();
-    result.deviatoric_fiber_stretch = std::pow(evaluation.J, -1.0 / 3.0) * result.fiber_stretch;
+    result.deviatoric_fiber_stretch = std::pow(state.J, -1.0 / 3.0) * result.fiber_stretch;
   }
   return result;
 }
 
-bool project_to_psd(Matrix12d& H)
+template <int Size> bool project_to_psd(Eigen::Matrix<double, Size, Size>& H)
 {
   // An element's energy is unchanged by a translation, so its Hessian is H = P^T G P with G the
-  // block of the last three nodes (their motion relative to the first; P is onto), and H is
-  // positive semi-definite where G is positive definite: a 9x9 Cholesky settles those elements
-  // without the 12x12 eigen-decomposition (4.5 % of a free knee sweep's time). Any other matrix
-  // goes to the decomposition.
-  Eigen::Matrix<double, 12, 3> translated = Eigen::Matrix<double, 12, 3>::Zero();
-  for (int node = 0; node < 4; ++node)
-    translated += H.middleCols<3>(3 * node);
+  // block of all nodes but the first (their motion relative to it; P is onto), and H is
+  // positive semi-definite where G is positive definite: a Cholesky of that block settles
+  // those elements without the eigen-decomposition of H (4.5 % of a free knee sweep's time
+  // with linear tets). Any other matrix goes to the decomposition.
+  constexpr int rest = Size - 3;
+  Eigen::Matrix<double, Size, 3> translated = Eigen::Matrix<double, Size, 3>::Zero();
+  for (int node = 0; node < Size / 3; ++node)
+    translated += H.template middleCols<3>(3 * node);
   if (translated.cwiseAbs().maxCoeff() <= 1e-12 * H.cwiseAbs().maxCoeff() &&
-      Eigen::LLT<Eigen::Matrix<double, 9, 9>>(H.bottomRightCorner<9, 9>()).info() == Eigen::Success)
+      Eigen::LLT<Eigen::Matrix<double, rest, rest>>(H.template bottomRightCorner<rest, rest>())
+              .info() == Eigen::Success)
     return false;
-  Eigen::SelfAdjointEigenSolver<Matrix12d> eigen(H);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, Size, Size>> eigen(H);
   const auto& values = eigen.eigenvalues();
   if (values.minCoeff() >= 0.0)
     return false;
-  const Vector12d clamped = values.cwiseMax(0.0);
+  const Eigen::Matrix<double, Size, 1> clamped = values.cwiseMax(0.0);
   H.noalias() = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose();
   return true;
 }
+
+template bool project_to_psd<12>(Eigen::Matrix<double, 12, 12>&);
+template bool project_to_psd<30>(Eigen::Matrix<double, 30, 30>&);
 
 } // namespace ligsim::sim

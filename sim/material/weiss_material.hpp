@@ -5,6 +5,7 @@
 
 #include "sim/material/fiber_law.hpp"
 #include "sim/material/material_parameters.hpp"
+#include "sim/material/volumetric_law.hpp"
 #include "sim/mesh/tet_shape.hpp"
 
 #include <Eigen/Core>
@@ -71,14 +72,32 @@ public:
 
   ElementMeasures measures(const TetCorners& Q, const TetShape& shape,
                            const Eigen::Vector3d& fiber) const;
+  /// The same figures at deformation gradient F.
+  ElementMeasures measures_at(const Eigen::Matrix3d& F, const Eigen::Vector3d& fiber) const;
 
 private:
+  /// W and the invariants it is made of at one deformation gradient (eq. 3, 6, 14, 22).
+  struct PointState {
+    bool inverted = false; ///< J not positive or not finite: nothing else is set
+    double J = 1.0;
+    double trace_c = 0.0; ///< tr C
+    double s = 1.0;       ///< J^-2/3
+    VolumetricResponse volumetric;
+    Eigen::Vector3d fa = Eigen::Vector3d::Zero(); ///< F a
+    double aca = 0.0;                             ///< a C a
+    double lambda = 0.0;                          ///< deviatoric fiber stretch, sqrt(I4)
+    FiberResponse fiber_response;
+    double energy_density = 0.0; ///< W, MPa
+  };
+  PointState state_at(const Eigen::Matrix3d& F, const Eigen::Vector3d& fiber) const;
+
   MaterialParameters m_parameters;
   std::optional<FiberLaw> m_fiber_law;
 };
 
-/// Replaces `H` by its projection onto the positive semi-definite cone (negative eigenvalues set
-/// to zero). Returns true if anything was negative.
-bool project_to_psd(Matrix12d& H);
+/// Replaces an element's stiffness `H` (3 N x 3 N, N = 4 or 10 nodes) by its projection onto
+/// the positive semi-definite cone (negative eigenvalues set to zero). Returns true if anything
+/// was negative.
+template <int Size> bool project_to_psd(Eigen::Matrix<double, Size, Size>& H);
 
 } // namespace ligsim::sim

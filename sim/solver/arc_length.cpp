@@ -125,7 +125,7 @@ BodyEquilibrium::BodyEquilibrium(const HyperelasticBody& body, const BoundaryCon
     : m_body(body)
     , m_dofs(body.node_count(), conditions, body.unreferenced_nodes())
     , m_rest(body.rest_positions())
-    , m_stiffness(body.mesh().T, m_dofs)
+    , m_stiffness(body.elements(), m_dofs)
 {
   if (m_dofs.has_moving_targets())
     fail("arc-length continuation: a prescribed displacement or rigid motion moves with the "

@@ -7,24 +7,6 @@
 
 namespace ligsim::sim {
 
-Eigen::VectorXd apply_stiffness(const HyperelasticBody& body, const Eigen::VectorXd& x,
-                                const Eigen::VectorXd& d)
-{
-  const Tetrahedra& T = body.mesh().T;
-  std::vector<Matrix12d> H(static_cast<std::size_t>(T.rows()));
-  body.element_hessians(x, 0, T.rows(), false, H.data());
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(d.size());
-  for (Eigen::Index e = 0; e < T.rows(); ++e) {
-    Eigen::Matrix<double, 12, 1> local;
-    for (int a = 0; a < 4; ++a)
-      local.segment<3>(3 * a) = d.segment<3>(3 * T(e, a));
-    const Eigen::Matrix<double, 12, 1> product = H[static_cast<std::size_t>(e)] * local;
-    for (int a = 0; a < 4; ++a)
-      y.segment<3>(3 * T(e, a)) += product.segment<3>(3 * a);
-  }
-  return y;
-}
-
 CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
                                        const BoundaryConditions& conditions,
                                        const Eigen::VectorXd& x, const ExtraPotential* extra,
@@ -40,7 +22,7 @@ CondensedStiffness condensed_stiffness(const HyperelasticBody& body,
       prescribed.row(dof) = D.row(dof);
   Eigen::MatrixXd KD(D.rows(), m);
   for (Eigen::Index k = 0; k < m; ++k)
-    KD.col(k) = apply_stiffness(body, x, prescribed.col(k));
+    KD.col(k) = body.apply_stiffness(x, prescribed.col(k));
   Eigen::MatrixXd free_part(dofs.free_count(), m);
   for (int f = 0; f < dofs.free_count(); ++f) {
     const int dof = dofs.free_dofs()[static_cast<std::size_t>(f)];

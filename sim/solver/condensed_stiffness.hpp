@@ -15,10 +15,6 @@
 
 namespace ligsim::sim {
 
-/// K(x) d for a flat vector d over all DOFs (the unprojected element stiffnesses), N.
-Eigen::VectorXd apply_stiffness(const HyperelasticBody& body, const Eigen::VectorXd& x,
-                                const Eigen::VectorXd& d);
-
 struct CondensedStiffness {
   Eigen::MatrixXd matrix; ///< D^T S D (m x m), symmetric
   /// How K_ff was factorised: "exact", or "projected" when the exact one is not positive

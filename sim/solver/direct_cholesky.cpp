@@ -20,7 +20,7 @@ constexpr int max_iteration_budget = 40;
 } // namespace
 
 DirectCholesky::DirectCholesky(const HyperelasticBody& body, const DofPartition& dofs)
-    : m_stiffness(body.mesh().T, dofs)
+    : m_stiffness(body.elements(), dofs)
 {
 }
 

@@ -11,10 +11,11 @@ namespace ligsim::sim {
 
 FilteredPcg::FilteredPcg(const HyperelasticBody& body, const DofPartition& dofs,
                          const PcgSettings& settings)
-    : m_T(body.mesh().T)
+    : m_T(body.elements())
     , m_dofs(dofs)
     , m_settings(settings)
-    , m_hessians(static_cast<std::size_t>(body.element_count()))
+    , m_hessians(static_cast<std::size_t>(body.element_count()) * 9 *
+                 static_cast<std::size_t>(body.nodes_per_element() * body.nodes_per_element()))
     , m_block_inverse(static_cast<std::size_t>(body.node_count()))
 {
 }
@@ -32,10 +33,12 @@ int FilteredPcg::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x,
   // Block-Jacobi: the 3 x 3 diagonal node blocks, with prescribed rows and columns replaced by
   // the identity so that the filtered operator stays invertible.
   std::vector<Eigen::Matrix3d> blocks(m_block_inverse.size(), Eigen::Matrix3d::Zero());
-  for (Eigen::Index e = 0; e < m_T.rows(); ++e)
-    for (int i = 0; i < 4; ++i)
-      blocks[static_cast<std::size_t>(m_T(e, i))] +=
-          scale * m_hessians[static_cast<std::size_t>(e)].block<3, 3>(3 * i, 3 * i);
+  const Eigen::Index size = 3 * m_T.cols();
+  for (Eigen::Index e = 0; e < m_T.rows(); ++e) {
+    const Eigen::Map<const Eigen::MatrixXd> H(m_hessians.data() + e * size * size, size, size);
+    for (Eigen::Index i = 0; i < m_T.cols(); ++i)
+      blocks[static_cast<std::size_t>(m_T(e, i))] += scale * H.block<3, 3>(3 * i, 3 * i);
+  }
   for (const NodeBlock& block : m_node_blocks)
     blocks[static_cast<std::size_t>(block.node)] += scale * block.block;
   const Eigen::VectorXd& mask = m_dofs.free_mask();
@@ -60,24 +63,33 @@ int FilteredPcg::prepare(const HyperelasticBody& body, const Eigen::VectorXd& x,
   return projected;
 }
 
-void FilteredPcg::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+template <int N> void FilteredPcg::apply_elements(const Eigen::VectorXd& x) const
 {
-  std::vector<Eigen::VectorXd>& partial = m_partial;
-  partial.resize(static_cast<std::size_t>(worker_count()));
+  using Vector = Eigen::Matrix<double, 3 * N, 1>;
+  using Matrix = Eigen::Matrix<double, 3 * N, 3 * N>;
+  m_partial.resize(static_cast<std::size_t>(worker_count()));
   parallel_slices(m_T.rows(), [&](std::ptrdiff_t begin, std::ptrdiff_t end, int worker) {
-    Eigen::VectorXd& local = partial[static_cast<std::size_t>(worker)];
+    Eigen::VectorXd& local = m_partial[static_cast<std::size_t>(worker)];
     local.setZero(x.size());
     for (std::ptrdiff_t e = begin; e < end; ++e) {
-      Vector12d xe;
-      for (int i = 0; i < 4; ++i)
-        xe.segment<3>(3 * i) = x.segment<3>(3 * m_T(e, i));
-      const Vector12d ye = m_hessians[static_cast<std::size_t>(e)] * xe;
-      for (int i = 0; i < 4; ++i)
-        local.segment<3>(3 * m_T(e, i)) += ye.segment<3>(3 * i);
+      Vector xe;
+      for (int i = 0; i < N; ++i)
+        xe.template segment<3>(3 * i) = x.segment<3>(3 * m_T(e, i));
+      const Vector ye = Eigen::Map<const Matrix>(m_hessians.data() + e * 9 * N * N) * xe;
+      for (int i = 0; i < N; ++i)
+        local.segment<3>(3 * m_T(e, i)) += ye.template segment<3>(3 * i);
     }
   });
+}
+
+void FilteredPcg::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+{
+  if (m_T.cols() == 10)
+    apply_elements<10>(x);
+  else
+    apply_elements<4>(x);
   y.setZero(x.size());
-  for (const Eigen::VectorXd& local : partial)
+  for (const Eigen::VectorXd& local : m_partial)
     if (local.size() == x.size())
       y += local;
   for (const NodeBlock& block : m_node_blocks)

@@ -29,16 +29,18 @@ public:
   /// y = S A S x on full-length vectors.
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { apply(x, y); }
 
-  std::size_t stored_values() const { return 144 * m_hessians.size(); }
+  std::size_t stored_values() const { return m_hessians.size(); }
 
 private:
   /// y = S (diag(mass) + scale (K + node blocks)) S x.
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// The elements' part of K x, summed per worker into m_partial.
+  template <int N> void apply_elements(const Eigen::VectorXd& x) const;
 
-  const Tetrahedra& m_T;
+  const ElementNodes& m_T;
   const DofPartition& m_dofs;
   PcgSettings m_settings;
-  std::vector<Matrix12d> m_hessians;
+  std::vector<double> m_hessians; ///< (3 N)^2 per element, N nodes per element
   double m_scale = 1.0;
   Eigen::VectorXd m_mass; ///< full length, may be empty
   std::vector<NodeBlock> m_node_blocks;

@@ -50,10 +50,14 @@ ImplicitEuler::ImplicitEuler(const HyperelasticBody& body, const BoundaryConditi
 
   const double density = settings.density_kg_m3 * kg_per_m3_to_t_per_mm3;
   m_mass = Eigen::VectorXd::Zero(body.dof_count());
-  const Tetrahedra& T = body.mesh().T;
+  // Quadratic tets have no positive row-sum lumped mass (their corners' rows sum to a
+  // negative mass); the interactive mode, the one user of dynamics, runs linear tets.
+  if (body.quadratic())
+    fail("dynamics takes linear tets; this body has quadratic ones");
+  const ElementNodes& T = body.elements();
   for (Eigen::Index e = 0; e < T.rows(); ++e)
     for (int i = 0; i < 4; ++i)
-      m_mass.segment<3>(3 * T(e, i)).array() += density * body.shape(e).V0 / 4.0;
+      m_mass.segment<3>(3 * T(e, i)).array() += density * body.element_volume(e) / 4.0;
   m_free_mass = m_dofs.gather(m_mass);
 
   if (settings.stiffness_damping_s > 0.0) {

@@ -66,14 +66,15 @@ NewtonEngine::NewtonEngine(const HyperelasticBody& body, const DofPartition& dof
   m_force_floor = 1e-12 * mu * m_length_mm * m_length_mm;
   m_energy_unit = mu * body.rest_volume();
 
-  const Tetrahedra& T = body.mesh().T;
+  // Each element's volume in equal shares to its nodes.
+  const ElementNodes& T = body.elements();
   Eigen::VectorXd lumped = Eigen::VectorXd::Zero(body.dof_count());
   double mean_size_squared = 0.0;
   for (Eigen::Index e = 0; e < T.rows(); ++e) {
-    const double volume = body.shape(static_cast<int>(e)).V0;
+    const double volume = body.element_volume(e);
     mean_size_squared += std::pow(volume, 2.0 / 3.0) / static_cast<double>(T.rows());
-    for (int i = 0; i < 4; ++i)
-      lumped.segment<3>(3 * T(e, i)).array() += volume / 4.0;
+    for (Eigen::Index i = 0; i < T.cols(); ++i)
+      lumped.segment<3>(3 * T(e, i)).array() += volume / static_cast<double>(T.cols());
   }
   m_shift_unit = m_dofs.gather(lumped) * (mu / mean_size_squared);
 }

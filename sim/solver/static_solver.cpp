@@ -44,9 +44,9 @@ StaticSolver::StaticSolver(const HyperelasticBody& body, const BoundaryCondition
   m_policy.residual_tolerance = settings.residual_tolerance;
   m_policy.energy_tolerance = settings.energy_tolerance;
   m_policy.verbose = settings.verbose;
-  const Tetrahedra& T = body.mesh().T;
+  const ElementNodes& T = body.elements();
   for (Eigen::Index e = 0; e < T.rows(); ++e)
-    for (int i = 0; i < 4; ++i)
+    for (Eigen::Index i = 0; i < T.cols(); ++i)
       if (!m_dofs.is_free(3 * T(e, i)) || !m_dofs.is_free(3 * T(e, i) + 1) ||
           !m_dofs.is_free(3 * T(e, i) + 2)) {
         m_boundary_elements.push_back(static_cast<int>(e));
@@ -94,21 +94,7 @@ bool StaticSolver::move_prescribed(Eigen::VectorXd& x, double t1, StepReport& re
   }
   if (extra)
     at.gradient -= (t1 - m_converged_t) * m_external;
-  Eigen::VectorXd coupling = Eigen::VectorXd::Zero(m_dofs.dof_count());
-  const Tetrahedra& T = m_body.mesh().T;
-  ElementEvaluation element;
-  for (int e : m_boundary_elements) {
-    Vector12d local_shift;
-    for (int i = 0; i < 4; ++i)
-      local_shift.segment<3>(3 * i) = shift.segment<3>(3 * T(e, i));
-    if (local_shift.lpNorm<Eigen::Infinity>() == 0.0)
-      continue;
-    m_body.material().evaluate(tet_corners(T, e, x), m_body.shape(e), m_body.fiber(e),
-                               ElementNeeds::hessian, element);
-    const Vector12d force = element.hessian * local_shift;
-    for (int i = 0; i < 4; ++i)
-      coupling.segment<3>(3 * T(e, i)) += force.segment<3>(3 * i);
-  }
+  const Eigen::VectorXd coupling = m_body.apply_stiffness(x, shift, &m_boundary_elements);
   const Eigen::VectorXd rhs = -m_dofs.gather(at.gradient + coupling);
   Eigen::VectorXd predictor;
   bool saddle = false;

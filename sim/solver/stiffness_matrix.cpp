@@ -6,13 +6,14 @@
 
 namespace ligsim::sim {
 
-StiffnessMatrix::StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs)
+StiffnessMatrix::StiffnessMatrix(const ElementNodes& T, const DofPartition& dofs)
 {
   const int node_count = dofs.dof_count() / 3;
+  const int nodes = static_cast<int>(T.cols());
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(node_count));
   for (Eigen::Index e = 0; e < T.rows(); ++e)
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < nodes; ++i)
+      for (int j = 0; j < nodes; ++j)
         neighbours[static_cast<std::size_t>(T(e, i))].push_back(T(e, j));
   for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
@@ -54,15 +55,17 @@ StiffnessMatrix::StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs)
   for (int dof = 0; dof < dofs.dof_count(); ++dof)
     m_node_free[static_cast<std::size_t>(dof)] = dofs.free_index(dof);
 
-  m_scatter.assign(static_cast<std::size_t>(T.rows()) * pair_count, -1);
+  m_pair_count = 3 * nodes * (3 * nodes + 1) / 2;
+  const auto pairs = static_cast<std::size_t>(m_pair_count);
+  m_scatter.assign(static_cast<std::size_t>(T.rows()) * pairs, -1);
   for (Eigen::Index e = 0; e < T.rows(); ++e) {
     int k = 0;
-    for (int q = 0; q < 12; ++q)
+    for (int q = 0; q < 3 * nodes; ++q)
       for (int p = 0; p <= q; ++p, ++k) {
         const int fp = dofs.free_index(3 * T(e, p / 3) + p % 3);
         const int fq = dofs.free_index(3 * T(e, q / 3) + q % 3);
         if (fp >= 0 && fq >= 0)
-          m_scatter[static_cast<std::size_t>(e) * pair_count + static_cast<std::size_t>(k)] =
+          m_scatter[static_cast<std::size_t>(e) * pairs + static_cast<std::size_t>(k)] =
               position(std::max(fp, fq), std::min(fp, fq));
       }
   }
@@ -73,12 +76,13 @@ void StiffnessMatrix::set_zero()
   std::fill(m_matrix.valuePtr(), m_matrix.valuePtr() + m_matrix.nonZeros(), 0.0);
 }
 
-void StiffnessMatrix::scatter(Eigen::Index e, const Matrix12d& H, double scale,
-                              double* values) const
+template <class Matrix>
+void StiffnessMatrix::scatter(Eigen::Index e, const Matrix& H, double scale, double* values) const
 {
-  const int* positions = m_scatter.data() + static_cast<std::size_t>(e) * pair_count;
+  const int* positions =
+      m_scatter.data() + static_cast<std::size_t>(e) * static_cast<std::size_t>(m_pair_count);
   int k = 0;
-  for (int q = 0; q < 12; ++q)
+  for (int q = 0; q < Matrix::RowsAtCompileTime; ++q)
     for (int p = 0; p <= q; ++p, ++k)
       if (positions[k] >= 0)
         values[positions[k]] += scale * H(p, q);
@@ -94,7 +98,7 @@ int StiffnessMatrix::add_elements(const HyperelasticBody& body, const Eigen::Vec
   const auto count = static_cast<std::size_t>(m_matrix.nonZeros());
   int projected = 0;
   const BodyEnergy sum = body.stiffness_pass(x, project, gradient, projected,
-                                             [&](Eigen::Index e, const Matrix12d& H, int worker) {
+                                             [&](Eigen::Index e, const auto& H, int worker) {
                                                const auto w = static_cast<std::size_t>(worker);
                                                if (w == 0) {
                                                  scatter(e, H, scale, m_matrix.valuePtr());

@@ -16,7 +16,8 @@ namespace ligsim::sim {
 
 class StiffnessMatrix {
 public:
-  StiffnessMatrix(const Tetrahedra& T, const DofPartition& dofs);
+  /// The pattern of elements with the given nodes (#elements x nodes per element).
+  StiffnessMatrix(const ElementNodes& elements, const DofPartition& dofs);
 
   /// Lower triangle (with the diagonal) of the free-DOF matrix, compressed column storage.
   const Eigen::SparseMatrix<double>& matrix() const { return m_matrix; }
@@ -41,15 +42,16 @@ public:
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
 private:
-  /// Adds scale * H_e of element e (node-major 12 x 12) into `values` (laid out as the
-  /// matrix's), at its free-DOF entries.
-  void scatter(Eigen::Index e, const Matrix12d& H, double scale, double* values) const;
+  /// Adds scale * H_e of element e (node-major, 3 nodes per element square) into `values`
+  /// (laid out as the matrix's), at its free-DOF entries.
+  template <class Matrix>
+  void scatter(Eigen::Index e, const Matrix& H, double scale, double* values) const;
 
-  /// Local pairs (p <= q) of a 12 x 12 block, column by column (q outer), the order of
-  /// m_scatter's entries.
-  static constexpr int pair_count = 78;
+  /// Local pairs (p <= q) of an element's block, column by column (q outer), the order of
+  /// m_scatter's entries: 78 for a linear tet, 465 for a quadratic one.
+  int m_pair_count = 0;
   Eigen::SparseMatrix<double> m_matrix;
-  std::vector<int> m_scatter;   ///< pair_count value positions per element, -1 when prescribed
+  std::vector<int> m_scatter;   ///< m_pair_count value positions per element, -1: prescribed
   std::vector<int> m_diagonal;  ///< value position of each column's diagonal
   std::vector<int> m_node_free; ///< free index of each DOF (-1: prescribed), node-major
   std::vector<std::vector<double>> m_worker_values; ///< values of workers 1, 2, ... in add_elements

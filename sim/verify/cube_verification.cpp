@@ -103,7 +103,7 @@ CubeCaseResult run_cube_case(const FebioMesh& mesh, const FebioCase& c, CubeEner
   result.volume_change_pct = 100.0 * (body.volume(x) / body.rest_volume() - 1.0);
   double fiber_strain = 0.0;
   for (Eigen::Index e = 0; e < body.element_count(); ++e)
-    fiber_strain += body.shape(e).V0 * (body.measures(x, e).deviatoric_fiber_stretch - 1.0);
+    fiber_strain += body.element_volume(e) * (body.measures(x, e).deviatoric_fiber_stretch - 1.0);
   result.avg_fiber_strain_pct = 100.0 * fiber_strain / body.rest_volume();
 
   if (reference.rows() == body.node_count()) {

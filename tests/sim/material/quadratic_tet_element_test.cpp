@@ -51,7 +51,7 @@ QuadraticTetEvaluation evaluated(const WeissMaterial& m, const QuadraticTetRows&
                                  const std::vector<Eigen::Vector3d>& fibers, ElementNeeds needs)
 {
   QuadraticTetEvaluation out;
-  evaluate_quadratic_tet(m, Q, shape, fibers, needs, out);
+  evaluate_quadratic_tet(m, Q, shape, fibers.data(), fibers.size(), needs, out);
   return out;
 }
 

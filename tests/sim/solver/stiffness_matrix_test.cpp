@@ -1,3 +1,4 @@
+#include "sim/mesh/quadratic_tet.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/stiffness_matrix.hpp"
 
@@ -9,12 +10,14 @@ using namespace ligsim::sim;
 
 namespace {
 
-/// A deformed 10^3 cube (5,000 tets: enough for every worker of the parallel pass), bottom
-/// fixed, fibers along z.
+/// A deformed cube, bottom fixed, fibers along z: 10^3 hexes of linear tets (5,000: enough for
+/// every worker of the parallel pass), or 5^3 of quadratic tets.
 struct Deformed {
-  Deformed()
-      : mesh(structured_cube_mesh(10, 1.0))
-      , body(mesh, mcl_material(), fibers())
+  explicit Deformed(bool quadratic = false)
+      : body(quadratic ? HyperelasticBody(promote_to_quadratic(structured_cube_mesh(5, 1.0)),
+                                          mcl_material(), fibers(), tet_quadrature(2))
+                       : HyperelasticBody(structured_cube_mesh(10, 1.0), mcl_material(), fibers()))
+      , mesh(body.mesh())
       , conditions(test::cube_tension(mesh, Eigen::Vector3d(0, 0, 0.01)))
       , dofs(body.node_count(), conditions, body.unreferenced_nodes())
       , x(body.rest_positions())
@@ -32,19 +35,17 @@ struct Deformed {
     return a;
   }
 
-  ligsim::TetMesh mesh;
   HyperelasticBody body;
+  ligsim::TetMesh mesh; ///< every node
   BoundaryConditions conditions;
   DofPartition dofs;
   Eigen::VectorXd x;
 };
 
-} // namespace
-
-TEST(StiffnessMatrix, TheParallelPassSumsTheElementStiffnesses)
+/// Checks the assembled matrix of `d` against its elements' stiffnesses, N nodes per element.
+template <int N> void expect_the_parallel_pass_sums_the_element_stiffnesses(const Deformed& d)
 {
-  const Deformed d;
-  StiffnessMatrix K(d.mesh.T, d.dofs);
+  StiffnessMatrix K(d.body.elements(), d.dofs);
   K.set_zero();
   const double scale = 0.5;
   BodyEnergy energy;
@@ -55,13 +56,14 @@ TEST(StiffnessMatrix, TheParallelPassSumsTheElementStiffnesses)
   const int n = d.dofs.free_count();
   std::vector<Eigen::Triplet<double>> entries;
   int reference_projected = 0;
-  ElementEvaluation evaluation;
+  NodalEvaluation<N> evaluation;
+  const ElementNodes& T = d.body.elements();
   for (Eigen::Index e = 0; e < d.body.element_count(); ++e) {
     reference_projected += d.body.element_hessian(d.x, e, true, evaluation) ? 1 : 0;
-    for (int p = 0; p < 12; ++p)
-      for (int q = 0; q < 12; ++q) {
-        const int fp = d.dofs.free_index(3 * d.mesh.T(e, p / 3) + p % 3);
-        const int fq = d.dofs.free_index(3 * d.mesh.T(e, q / 3) + q % 3);
+    for (int p = 0; p < 3 * N; ++p)
+      for (int q = 0; q < 3 * N; ++q) {
+        const int fp = d.dofs.free_index(3 * T(e, p / 3) + p % 3);
+        const int fq = d.dofs.free_index(3 * T(e, q / 3) + q % 3);
         if (fp >= 0 && fq >= 0)
           entries.emplace_back(fp, fq, scale * evaluation.hessian(p, q));
       }
@@ -80,12 +82,26 @@ TEST(StiffnessMatrix, TheParallelPassSumsTheElementStiffnesses)
   EXPECT_EQ(gradient, expected_gradient);
 }
 
+} // namespace
+
+TEST(StiffnessMatrix, TheParallelPassSumsTheElementStiffnesses)
+{
+  expect_the_parallel_pass_sums_the_element_stiffnesses<4>(Deformed());
+}
+
+TEST(StiffnessMatrix, TheParallelPassSumsQuadraticTetStiffnesses)
+{
+  const Deformed d(true);
+  ASSERT_EQ(d.body.nodes_per_element(), 10);
+  expect_the_parallel_pass_sums_the_element_stiffnesses<10>(d);
+}
+
 TEST(StiffnessMatrix, AnInvertedElementIsReportedAndLeftOut)
 {
   Deformed d;
   // Push one node through the opposite face of the elements around it.
   d.x(3 * 555 + 2) -= 0.5;
-  StiffnessMatrix K(d.mesh.T, d.dofs);
+  StiffnessMatrix K(d.body.elements(), d.dofs);
   K.set_zero();
   BodyEnergy energy;
   K.add_elements(d.body, d.x, false, 1.0, &energy, nullptr);

@@ -1,11 +1,12 @@
 // Homogeneous uniaxial stretch of a cube against the closed-form answer for the same energy.
 // Symmetry planes hold x = 0, y = 0, z = 0; the top face is moved to stretch lambda; the lateral
-// faces are free. Linear tets reproduce the homogeneous state exactly, so the reaction on the
-// top face must equal A0 dW/dlambda at the lateral stretch m solving dW/dm = 0.
+// faces are free. Linear and quadratic tets reproduce the homogeneous state exactly, so the
+// reaction on the top face must equal A0 dW/dlambda at the lateral stretch m solving dW/dm = 0.
 
 #include "sim/material/fiber_law.hpp"
 #include "sim/material/volumetric_law.hpp"
 #include "sim/mesh/node_selection.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/solver/static_solver.hpp"
 
@@ -70,12 +71,22 @@ struct Simulated {
   double lateral_stretch = 0.0;
 };
 
-Simulated simulate(const MaterialParameters& p, double fiber_length, double lambda)
+/// The 2 x 2 x 2-hex cube, of linear tets or (`quadratic`) 10-node tets with the 4-point rule.
+HyperelasticBody cube(const MaterialParameters& p, const FiberField& fiber, bool quadratic)
 {
-  const ligsim::TetMesh mesh = structured_cube_mesh(2, 1.0);
+  const ligsim::TetMesh linear = structured_cube_mesh(2, 1.0);
+  if (quadratic)
+    return HyperelasticBody(promote_to_quadratic(linear), p, fiber, tet_quadrature(2));
+  return HyperelasticBody(linear, p, fiber);
+}
+
+Simulated simulate(const MaterialParameters& p, double fiber_length, double lambda,
+                   bool quadratic = false)
+{
   ligsim::sim::FiberField fiber(1, 3);
   fiber << 0.0, 0.0, fiber_length;
-  const HyperelasticBody body(mesh, p, fiber);
+  const HyperelasticBody body = cube(p, fiber, quadratic);
+  const ligsim::TetMesh& mesh = body.mesh(); // every node, the mid-edge ones included
   BoundaryConditions conditions;
   for (int axis = 0; axis < 3; ++axis) {
     ConstraintSet plane;
@@ -109,18 +120,28 @@ using Case = std::tuple<double, FiberConvention, VolumetricLaw>;
 
 class UniaxialStretch : public ::testing::TestWithParam<Case> {};
 
-} // namespace
-
-TEST_P(UniaxialStretch, ReactionMatchesClosedForm)
+void expect_the_closed_form(const Case& c, bool quadratic)
 {
-  const auto [lambda, convention, volumetric] = GetParam();
+  const auto [lambda, convention, volumetric] = c;
   MaterialParameters p = mcl_material();
   p.fiber->convention = convention;
   p.volumetric = volumetric;
   const double expected = closed_form_force(p, 1.0, lambda);
-  const Simulated simulated = simulate(p, 1.0, lambda);
+  const Simulated simulated = simulate(p, 1.0, lambda, quadratic);
   EXPECT_NEAR(simulated.force_n, expected, 1e-6 * std::abs(expected));
   EXPECT_NEAR(simulated.lateral_stretch, lateral_stretch(p, 1.0, lambda), 1e-8);
+}
+
+} // namespace
+
+TEST_P(UniaxialStretch, ReactionMatchesClosedForm)
+{
+  expect_the_closed_form(GetParam(), false);
+}
+
+TEST_P(UniaxialStretch, QuadraticTetsMatchTheClosedFormToo)
+{
+  expect_the_closed_form(GetParam(), true);
 }
 
 INSTANTIATE_TEST_SUITE_P(
