@@ -6,6 +6,7 @@
 
 #include "common/mesh.hpp"
 #include "sim/material/material_parameters.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -52,8 +53,12 @@ struct FebSolverSettings {
 };
 
 struct FebProblem {
-  std::vector<std::string> notes;    ///< comment lines at the top of the file
-  TetMesh ligament;                  ///< mm, positively oriented
+  std::vector<std::string> notes; ///< comment lines at the top of the file
+  TetMesh ligament;               ///< mm, positively oriented
+  /// The ligament's 10-node tets, when not empty: `ligament.T` holds their corners and
+  /// `ligament.V` their mid-edge nodes too. Written as FEBio's TET10G4, the 4-point rule that
+  /// ligsim's rule of degree 2 is.
+  QuadraticTetrahedra ligament_tet10;
   Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
   MaterialParameters material;       ///< with fibers
   double in_situ_strain = 0.0;       ///< fiber pre-strain of the reference state

@@ -59,6 +59,16 @@ void validate(const FebProblem& problem)
     fail("FEBio export: {} settle steps", problem.settle_steps);
   if (!problem.material.fiber)
     fail("FEBio export: the material has no fibers (FEBio's trans iso Mooney-Rivlin needs them)");
+  if (problem.ligament_tet10.rows() > 0) {
+    if (problem.ligament_tet10.rows() != tets ||
+        problem.ligament_tet10.leftCols<4>() != problem.ligament.T)
+      fail("FEBio export: the 10-node tets are not the ligament's tets with mid-edge nodes");
+    if (problem.ligament_tet10.minCoeff() < 0 || problem.ligament_tet10.maxCoeff() >= nodes)
+      fail("FEBio export: a 10-node tet names a node out of the ligament's {}", nodes);
+    if (problem.contact)
+      fail("FEBio export: contact on 10-node tets is not written (FEBio needs their 6-node "
+           "faces)");
+  }
   if (problem.fiber_directions.rows() != tets)
     fail("FEBio export: {} fiber directions for {} tets", problem.fiber_directions.rows(), tets);
   for (Eigen::Index e = 0; e < tets; ++e)
@@ -235,10 +245,20 @@ void write_mesh(Buffer& out, const FebProblem& problem)
     next_node += static_cast<int>(bone.surface.V.rows());
     next_element += static_cast<int>(bone.surface.F.rows());
   }
-  fmt::format_to(it, "    <Elements type=\"tet4\" name=\"ligament\">\n");
-  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
-    fmt::format_to(it, "      <elem id=\"{}\">{},{},{},{}</elem>\n", t + 1, mesh.T(t, 0) + 1,
-                   mesh.T(t, 1) + 1, mesh.T(t, 2) + 1, mesh.T(t, 3) + 1);
+  if (problem.ligament_tet10.rows() > 0) {
+    fmt::format_to(it, "    <Elements type=\"TET10G4\" name=\"ligament\">\n");
+    for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+      fmt::format_to(it, "      <elem id=\"{}\">{}", t + 1, problem.ligament_tet10(t, 0) + 1);
+      for (int i = 1; i < 10; ++i)
+        fmt::format_to(it, ",{}", problem.ligament_tet10(t, i) + 1);
+      fmt::format_to(it, "</elem>\n");
+    }
+  } else {
+    fmt::format_to(it, "    <Elements type=\"tet4\" name=\"ligament\">\n");
+    for (Eigen::Index t = 0; t < mesh.T.rows(); ++t)
+      fmt::format_to(it, "      <elem id=\"{}\">{},{},{},{}</elem>\n", t + 1, mesh.T(t, 0) + 1,
+                     mesh.T(t, 1) + 1, mesh.T(t, 2) + 1, mesh.T(t, 3) + 1);
+  }
   fmt::format_to(it, "    </Elements>\n");
   for (std::size_t b = 0; b < problem.bones.size(); ++b) {
     const FebRigidBody& bone = problem.bones[b];

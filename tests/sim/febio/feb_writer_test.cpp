@@ -8,6 +8,7 @@
 #include "sim/febio/knee_feb.hpp"
 #include "sim/flexion/femur_poses.hpp"
 #include "sim/flexion/knee_flexion.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "tests/sim/febio/bar_knee.hpp"
 
 #include <gtest/gtest.h>
@@ -433,4 +434,29 @@ TEST(FebWriter, RefusesProblemsItCannotWrite)
   problem = good;
   problem.material.fiber.reset();
   EXPECT_THROW(feb_text(problem), InputError);
+}
+
+TEST(FebWriter, QuadraticTetsAreWrittenAsTet10G4WithTheirTenNodes)
+{
+  FebProblem problem = bar_problem(bar_settings(0.029));
+  const QuadraticTetMesh quadratic = promote_to_quadratic(problem.ligament);
+  problem.ligament.V = quadratic.V;
+  problem.ligament_tet10 = quadratic.T;
+  const auto root = parsed(feb_text(problem));
+  vtkXMLDataElement* elements = child(child(root, "Mesh"), "Elements", "name", "ligament");
+  ASSERT_NE(elements, nullptr);
+  EXPECT_STREQ(elements->GetAttribute("type"), "TET10G4");
+  ASSERT_EQ(count(elements, "elem"), static_cast<int>(quadratic.T.rows()));
+  const std::vector<double> last = numbers(
+      elements->GetNestedElement(static_cast<int>(quadratic.T.rows()) - 1)->GetCharacterData());
+  ASSERT_EQ(last.size(), 10u);
+  for (int i = 0; i < 10; ++i) // 1-based in the file
+    EXPECT_EQ(last[static_cast<std::size_t>(i)], quadratic.T(quadratic.T.rows() - 1, i) + 1);
+
+  FebProblem refused = problem;
+  refused.ligament_tet10(0, 4) = refused.ligament_tet10(0, 5) = -1;
+  EXPECT_THROW(feb_text(refused), InputError);
+  refused = problem;
+  refused.contact = true; // FEBio would need the tets' 6-node faces
+  EXPECT_THROW(feb_text(refused), InputError);
 }

@@ -8,6 +8,10 @@
 #include "common/progress.hpp"
 #include "sim/febio/feb_writer.hpp"
 #include "sim/febio/febio_cross_check.hpp"
+#include "sim/mesh/node_selection.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
+#include "sim/mesh/structured_mesh.hpp"
+#include "sim/solver/static_solver.hpp"
 #include "tests/sim/febio/bar_knee.hpp"
 
 #include <gtest/gtest.h>
@@ -190,6 +194,92 @@ TEST(FebioRun, AReshapedOverlapStartsBothFromThePushedShape)
     for (const BoneContact& bone : check.febio_contact[k])
       EXPECT_LT(bone.penetration_mm, 0.03) << "FEBio left the bar in the " << bone.bone;
   }
+}
+
+namespace {
+
+/// A rigid plate of two triangles, `size` mm square, centred on `center` in a plane z = const.
+FebRigidBody plate(const std::string& name, const Eigen::Vector3d& center, double size,
+                   std::vector<int> attached)
+{
+  FebRigidBody body;
+  body.name = name;
+  body.center_mm = center;
+  body.surface.V.resize(4, 3);
+  const double h = 0.5 * size;
+  body.surface.V << -h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0;
+  body.surface.V.rowwise() += center.transpose();
+  body.surface.F.resize(2, 3);
+  body.surface.F << 0, 1, 2, 0, 2, 3;
+  body.attached_nodes = std::move(attached);
+  return body;
+}
+
+} // namespace
+
+TEST(FebioRun, AQuadraticTetCubeAgreesWithFebiosTet10ToRoundOff)
+{
+  // The unit cube of 3 x 3 x 3 hexes of 10-node tets, fibers along z, its bottom face held and
+  // its top face lifted 0.06 mm: in FEBio each face bound to a rigid plate, the top one moved;
+  // in ligsim the same nodes prescribed. Same mesh, material and rule (FEBio's TET10G4).
+  REQUIRE_FEBIO();
+  Progress::set_quiet(true);
+  const QuadraticTetMesh mesh = promote_to_quadratic(structured_cube_mesh(3, 1.0));
+  FiberField fiber(1, 3);
+  fiber << 0.0, 0.0, 1.0;
+  MaterialParameters material = mcl_material();
+  material.fiber->convention = FiberConvention::weiss; // FEBio's only convention
+  const HyperelasticBody body(mesh, material, fiber, tet_quadrature(2));
+  const std::vector<int> bottom = nodes_on_plane(mesh.V, 2, 0.0, 1e-9);
+  const std::vector<int> top = nodes_on_plane(mesh.V, 2, 1.0, 1e-9);
+  const double lift_mm = 0.06;
+
+  FebProblem problem;
+  problem.ligament = body.mesh();
+  problem.ligament_tet10 = mesh.T;
+  problem.fiber_directions = Eigen::MatrixX3d::Zero(mesh.T.rows(), 3);
+  problem.fiber_directions.col(2).setOnes();
+  problem.material = material;
+  problem.step_labels = {1.0};
+  problem.bones.push_back(plate("bottom", {0.5, 0.5, -0.5}, 1.0, bottom));
+  problem.bones.push_back(plate("top", {0.5, 0.5, 1.5}, 1.0, top));
+  problem.bones.back().poses = {Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, lift_mm))};
+  problem.solver.displacement_tolerance = 1e-10;
+  problem.solver.energy_tolerance = 1e-10;
+  problem.solver.residual_tolerance = 1e-12;
+  const fs::path feb = fresh_folder("tet10_cube") / "cube.feb";
+  write_feb(feb, problem);
+  EXPECT_NE(feb_text(problem).find("TET10G4"), std::string::npos);
+  const FebioRun run = run_febio(febio(), feb);
+  const FebioStep febio_step = febio_steps(run.parsed, problem, 1, body).front();
+
+  BoundaryConditions conditions;
+  ConstraintSet held;
+  held.name = "bottom";
+  held.nodes = bottom;
+  ConstraintSet lifted;
+  lifted.name = "top";
+  lifted.nodes = top;
+  lifted.displacement_mm = Eigen::Vector3d(0.0, 0.0, lift_mm);
+  conditions.constraints = {held, lifted};
+  NewtonSettings settings;
+  settings.load_steps = 2;
+  settings.residual_tolerance = 1e-12;
+  StaticSolver solver(body, conditions, settings);
+  Eigen::VectorXd x = body.rest_positions();
+  Eigen::VectorXd residual;
+  const StaticResult result = solver.solve(x, [&](const StepReport&, const Eigen::VectorXd&,
+                                                  const Eigen::VectorXd& r) { residual = r; });
+  ASSERT_TRUE(result.converged) << result.failure;
+  const Eigen::Vector3d ours_force = reaction_forces(conditions, residual)[1];
+
+  EXPECT_GT(ours_force.z(), 1.0);
+  EXPECT_LT((ours_force - febio_step.femur_force_n).norm(), 1e-6 * ours_force.norm())
+      << "ours " << ours_force.transpose() << ", FEBio " << febio_step.femur_force_n.transpose();
+  const double energy = body.energy(x).energy;
+  EXPECT_NEAR(febio_step.strain_energy_mj, energy, 1e-6 * energy);
+  EXPECT_NEAR(febio_step.logged_energy_mj, energy, 1e-6 * energy);
+  EXPECT_LT((febio_step.x - x).lpNorm<Eigen::Infinity>(), 1e-6 * lift_mm);
 }
 
 TEST(FebioRun, FebiosFailureIsAnErrorWithItsMessage)
