@@ -50,8 +50,8 @@ FlexionFigures sweep_ligament(const sim::LigamentModel& ligament, const sim::Kne
   figures.ligament = ligament.name;
   const auto start = std::chrono::steady_clock::now();
   const sim::KneeModel& model = ligament.model;
-  const sim::HyperelasticBody body(model.mesh, settings.material,
-                                   sim::prestretched_fibers(model, settings.in_situ_strain));
+  const sim::HyperelasticBody body =
+      sim::ligament_body(model, settings.material, settings.in_situ_strain);
   const sim::BoundaryConditions conditions =
       sim::knee_conditions(model, sim::femur_rigid_motion(motion));
   const sim::SweepSteps steps = sim::motion_steps(motion);

@@ -6,12 +6,41 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
+#include <utility>
 
 namespace ligsim::sim {
 
-ContactSurface boundary_surface(const TetMesh& mesh)
+namespace {
+
+/// Each face split into four at the mid-edge nodes of `tet10`, in the face's orientation.
+std::vector<std::array<int, 3>> split_at_mid_edges(const std::vector<std::array<int, 3>>& faces,
+                                                   const QuadraticTetrahedra& tet10)
 {
-  const std::vector<std::array<int, 3>> boundary = tet_boundary_faces(mesh.T);
+  std::map<std::pair<int, int>, int> middle;
+  for (Eigen::Index e = 0; e < tet10.rows(); ++e)
+    for (int k = 0; k < 6; ++k) {
+      const int a = tet10(e, kQuadraticTetEdges[static_cast<std::size_t>(k)][0]);
+      const int b = tet10(e, kQuadraticTetEdges[static_cast<std::size_t>(k)][1]);
+      middle[std::minmax(a, b)] = tet10(e, 4 + k);
+    }
+  std::vector<std::array<int, 3>> split;
+  for (const auto& [a, b, c] : faces) {
+    const int ab = middle.at(std::minmax(a, b));
+    const int bc = middle.at(std::minmax(b, c));
+    const int ca = middle.at(std::minmax(c, a));
+    split.insert(split.end(), {{a, ab, ca}, {ab, b, bc}, {ca, bc, c}, {ab, bc, ca}});
+  }
+  return split;
+}
+
+} // namespace
+
+ContactSurface boundary_surface(const TetMesh& mesh, const QuadraticTetrahedra* tet10)
+{
+  std::vector<std::array<int, 3>> boundary = tet_boundary_faces(mesh.T);
+  if (tet10)
+    boundary = split_at_mid_edges(boundary, *tet10);
   ContactSurface surface;
   std::vector<double> area(static_cast<std::size_t>(mesh.V.rows()), 0.0);
   for (const std::array<int, 3>& f : boundary) {
@@ -37,9 +66,10 @@ ContactSurface boundary_surface(const TetMesh& mesh)
   return surface;
 }
 
-ContactSurface free_boundary_surface(const TetMesh& mesh, const BoundaryConditions& conditions)
+ContactSurface free_boundary_surface(const TetMesh& mesh, const BoundaryConditions& conditions,
+                                     const QuadraticTetrahedra* tet10)
 {
-  const ContactSurface all = boundary_surface(mesh);
+  const ContactSurface all = boundary_surface(mesh, tet10);
   std::vector<bool> held(static_cast<std::size_t>(mesh.V.rows()), false);
   for (const ConstraintSet& set : conditions.constraints)
     if (set.components[0] && set.components[1] && set.components[2])

@@ -22,8 +22,7 @@ CrossCheck cross_check_with_febio(const KneeModel& given, const FlexionSettings&
   const SweepSteps steps = motion_steps(motion);
   // Reshaped, both programs start from the shape pushed out of the bones.
   const KneeModel model = feb_start_model(given, settings, conditions);
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const KneeContact contact(model, conditions, settings.contact, settings.model_dir / "contact");
   const SweepResult sweep = run_flexion_sweep(body, conditions, settings, {}, &contact, &steps);
   check.ours_wall_s = seconds_since(start) + extra_wall_s;

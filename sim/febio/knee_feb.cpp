@@ -73,6 +73,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   FebProblem problem;
   problem.contact_settings = contact;
   problem.ligament = model.mesh;
+  problem.ligament_tet10 = model.tet10;
   problem.fiber_directions = model.fiber_directions;
   problem.material = settings.material;
   problem.in_situ_strain = settings.in_situ_strain;

@@ -89,7 +89,7 @@ KneeModel with_overlap_reshaped(const KneeModel& model, const FlexionSettings& s
                                 OverlapReport* report)
 {
   // The push leaves the in-situ strain out, so the model's unit fibers serve.
-  const HyperelasticBody body(model.mesh, settings.material, model.fiber_directions);
+  const HyperelasticBody body = ligament_body(model, settings.material, 0.0);
   Eigen::VectorXd x = body.rest_positions();
   const OverlapReport pushed =
       reshape_initial_overlap(body, settings.material, conditions, contact, settings.newton, x);
@@ -107,19 +107,19 @@ HyperelasticBody with_unit_fibers(const HyperelasticBody& body, const MaterialPa
   FiberField unit(body.element_count(), 3);
   for (Eigen::Index e = 0; e < body.element_count(); ++e)
     unit.row(e) = body.fiber(e).stableNormalized().transpose(); // zero without fibers
-  return HyperelasticBody(body.mesh(), material, std::move(unit));
+  return body.with(body.mesh().V, std::move(unit), material);
 }
 
 HyperelasticBody with_rest_shape(const HyperelasticBody& body, const MaterialParameters& material,
                                  const Eigen::VectorXd& x)
 {
-  TetMesh mesh = body.mesh();
-  for (Eigen::Index n = 0; n < mesh.V.rows(); ++n)
-    mesh.V.row(n) = x.segment<3>(3 * n).transpose();
+  Points rest(body.node_count(), 3);
+  for (Eigen::Index n = 0; n < rest.rows(); ++n)
+    rest.row(n) = x.segment<3>(3 * n).transpose();
   FiberField fibers(body.element_count(), 3);
   for (Eigen::Index e = 0; e < body.element_count(); ++e)
     fibers.row(e) = body.fiber(e).transpose();
-  return HyperelasticBody(std::move(mesh), material, std::move(fibers));
+  return body.with(rest, std::move(fibers), material);
 }
 
 } // namespace ligsim::sim

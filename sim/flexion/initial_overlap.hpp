@@ -55,7 +55,7 @@ KneeModel with_overlap_reshaped(const KneeModel& model, const FlexionSettings& s
                                 OverlapReport* report = nullptr);
 
 /// `body` with unit fibers: its material without the in-situ pre-stretch the fibers' length
-/// carries (prestretched_fibers).
+/// carries (ligament_body).
 HyperelasticBody with_unit_fibers(const HyperelasticBody& body, const MaterialParameters& material);
 
 /// `body` (its material, fibers and their pre-stretch) at rest in the shape `x` (flat, mm): the

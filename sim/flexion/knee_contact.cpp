@@ -72,7 +72,8 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     obstacles.push_back({name, bone->grid.get(), bone->motion, attached});
     m_bones.push_back(std::move(bone));
   }
-  m_surface = free_boundary_surface(model.mesh, conditions);
+  m_surface = free_boundary_surface(model.mesh, conditions,
+                                    model.tet10.rows() > 0 ? &model.tet10 : nullptr);
   m_node_count = node_count;
   m_potential = std::make_unique<ContactPotential>(node_count, m_surface, std::move(obstacles),
                                                    config.barrier);

@@ -268,11 +268,6 @@ RegionalMean element_regions(const HyperelasticBody& body, double radius_mm)
   return RegionalMean(centroids, volumes, radius_mm);
 }
 
-FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain)
-{
-  return model.fiber_directions * (1.0 + in_situ_strain);
-}
-
 SweepSteps angle_steps(const std::vector<double>& angles_deg)
 {
   SweepSteps steps;

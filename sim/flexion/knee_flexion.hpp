@@ -26,9 +26,6 @@
 
 namespace ligsim::sim {
 
-/// Fiber vectors with the in-situ pre-stretch: unit direction times (1 + in_situ_strain).
-FiberField prestretched_fibers(const KneeModel& model, double in_situ_strain);
-
 /// Constraint set "tibia" held fixed, set "femur" moved by `femur`.
 BoundaryConditions knee_conditions(const KneeModel& model, const RigidMotion& femur);
 /// The same with the femur turned about `axis` by `last_angle_deg` at load factor 1.

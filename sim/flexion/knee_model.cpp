@@ -137,6 +137,48 @@ std::optional<BuiltMaterial> read_built_material(const fs::path& dir)
   return BuiltMaterial{scene.material, scene.fibers.row(0).norm() - 1.0};
 }
 
+KneeModel with_quadratic_tets(const KneeModel& model)
+{
+  if (model.tet10.rows() > 0)
+    return model;
+  KneeModel quadratic = model;
+  const QuadraticTetMesh promoted = promote_to_quadratic(model.mesh);
+  quadratic.mesh.V = promoted.V;
+  quadratic.tet10 = promoted.T;
+  // A mid-edge node is bound where its edge's two ends are: the edge then lies in the footprint.
+  auto extended = [&](const std::vector<int>& nodes) {
+    std::vector<bool> bound(static_cast<std::size_t>(promoted.V.rows()), false);
+    for (int n : nodes)
+      bound[static_cast<std::size_t>(n)] = true;
+    std::vector<int> result = nodes;
+    std::vector<bool> added(bound.size(), false);
+    for (Eigen::Index e = 0; e < promoted.T.rows(); ++e)
+      for (int k = 0; k < 6; ++k) {
+        const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
+        const auto mid = static_cast<std::size_t>(promoted.T(e, 4 + k));
+        if (!added[mid] && bound[static_cast<std::size_t>(promoted.T(e, i))] &&
+            bound[static_cast<std::size_t>(promoted.T(e, j))]) {
+          added[mid] = true;
+          result.push_back(static_cast<int>(mid));
+        }
+      }
+    return result;
+  };
+  quadratic.femur_nodes = extended(model.femur_nodes);
+  quadratic.tibia_nodes = extended(model.tibia_nodes);
+  return quadratic;
+}
+
+HyperelasticBody ligament_body(const KneeModel& model, const MaterialParameters& material,
+                               double in_situ_strain)
+{
+  FiberField fibers = model.fiber_directions * (1.0 + in_situ_strain);
+  if (model.tet10.rows() == 0)
+    return HyperelasticBody(model.mesh, material, std::move(fibers));
+  return HyperelasticBody(QuadraticTetMesh{model.mesh.V, model.tet10}, material, std::move(fibers),
+                          tet_quadrature(2));
+}
+
 KneeModel load_knee_model(const fs::path& dir)
 {
   if (!fs::is_directory(dir))

@@ -8,6 +8,8 @@
 #include "common/knee_manifest.hpp"
 #include "common/mesh.hpp"
 #include "sim/material/material_parameters.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
+#include "sim/solver/hyperelastic_body.hpp"
 
 #include <Eigen/Core>
 
@@ -24,7 +26,10 @@ namespace ligsim::sim {
 using BoneSurface = std::shared_ptr<const TriangleSurface>;
 
 struct KneeModel {
+  /// The ligament's tets; with `tet10`, their corners, and V holds the mid-edge nodes too.
   TetMesh mesh;
+  /// The ligament's 10-node tets over mesh.V (corners first), when not empty.
+  QuadraticTetrahedra tet10;
   Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
   std::vector<int> femur_nodes;      ///< move rigidly with the femur
   std::vector<int> tibia_nodes;      ///< stay with the (fixed) distal bone: tibia or fibula
@@ -35,6 +40,16 @@ struct KneeModel {
   KneeAnatomy anatomy; ///< anatomy.json of the folder (empty for models built without it)
   Points centerline;   ///< centerline.vtp of the folder, #P x 3 mm (0 rows without it)
 };
+
+/// The model with 10-node tets: a node at the middle of every edge of its tets (after its
+/// nodes), bound to a bone where both ends of its edge are.
+KneeModel with_quadratic_tets(const KneeModel& model);
+
+/// The model's ligament as a body of `material`: its linear tets, or its 10-node tets with the
+/// 4-point rule (degree 2, FEBio's TET10G4); its fibers with the in-situ pre-stretch (unit
+/// direction times 1 + in_situ_strain).
+HyperelasticBody ligament_body(const KneeModel& model, const MaterialParameters& material,
+                               double in_situ_strain);
 
 /// Reads the model folder. Throws InputError naming the file and what is missing: the folder,
 /// model.vtu, its "fiber" cell array or attachment flags, an empty or overlapping attachment

@@ -144,8 +144,8 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
     sweep.settings = ligament_settings(settings, ligament);
     if (ligaments.size() > 1)
       log_info(fmt::format("ligament {}: {} tets", ligament.name, model.mesh.T.rows()));
-    const HyperelasticBody body(model.mesh, sweep.settings.material,
-                                prestretched_fibers(model, sweep.settings.in_situ_strain));
+    const HyperelasticBody body =
+        ligament_body(model, sweep.settings.material, sweep.settings.in_situ_strain);
     const BoundaryConditions conditions = knee_conditions(model, femur_motion);
     std::optional<EmbeddedPolyline> centerline;
     if (model.centerline.rows() >= 2)

@@ -34,8 +34,7 @@ LigamentAtPose::LigamentAtPose(const LigamentModel& ligament, const FlexionSetti
   for (std::size_t o = 0; o < obstacles.size(); ++o)
     if (obstacles[o].name == "femur")
       m_femur_obstacle = static_cast<int>(o);
-  m_body.emplace(model.mesh, settings.material,
-                 prestretched_fibers(model, settings.in_situ_strain));
+  m_body.emplace(ligament_body(model, settings.material, settings.in_situ_strain));
   m_x = m_body->rest_positions();
 }
 

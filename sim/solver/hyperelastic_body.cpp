@@ -28,6 +28,7 @@ HyperelasticBody::HyperelasticBody(const QuadraticTetMesh& mesh, const MaterialP
     : m_elements(mesh.T)
     , m_material(material)
     , m_quadratic_shapes(compute_rest_shapes(mesh, rule))
+    , m_rule(rule)
 {
   m_mesh.V = mesh.V;
   m_mesh.T = mesh.T.leftCols<4>();
@@ -64,6 +65,14 @@ void HyperelasticBody::set_up(const FiberField& fibers, Eigen::Index fiber_rows_
   for (Eigen::Index e = 0; e < elements; ++e)
     for (Eigen::Index i = 0; i < m_elements.cols(); ++i)
       m_unreferenced[static_cast<std::size_t>(m_elements(e, i))] = false;
+}
+
+HyperelasticBody HyperelasticBody::with(const Points& rest, FiberField fibers,
+                                        const MaterialParameters& material) const
+{
+  if (!quadratic())
+    return HyperelasticBody(TetMesh{rest, m_mesh.T}, material, std::move(fibers));
+  return HyperelasticBody(QuadraticTetMesh{rest, m_elements}, material, std::move(fibers), m_rule);
 }
 
 double HyperelasticBody::element_volume(Eigen::Index e) const

@@ -70,6 +70,10 @@ public:
 
   /// Rest positions, flat (3 #nodes), mm.
   Eigen::VectorXd rest_positions() const;
+  /// A body of the same elements (and rule) with rest positions `rest` (#nodes x 3, mm), one
+  /// fiber per element `fibers` and `material`.
+  HyperelasticBody with(const Points& rest, FiberField fibers,
+                        const MaterialParameters& material) const;
 
   /// Calls f(std::integral_constant<int, N>{}) with N the nodes per element, 4 or 10, so that
   /// element loops are compiled for each size.
@@ -146,6 +150,7 @@ private:
   WeissMaterial m_material;
   std::vector<TetShape> m_shapes;                    ///< linear tets
   std::vector<QuadraticTetShape> m_quadratic_shapes; ///< quadratic tets
+  QuadratureRule m_rule;                             ///< quadratic tets
   /// Fibers: empty, one, one per element, or (quadratic) one per point of every element.
   std::vector<Eigen::Vector3d> m_fibers;
   int m_fibers_per_element = 0; ///< 0: one for all

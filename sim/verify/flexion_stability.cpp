@@ -317,8 +317,7 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
     if (definition.model)
       result.model_change = definition.model(knee);
     result.tets = static_cast<int>(knee.mesh.T.rows());
-    const HyperelasticBody body(knee.mesh, settings.material,
-                                prestretched_fibers(knee, settings.in_situ_strain));
+    const HyperelasticBody body = ligament_body(knee, settings.material, settings.in_situ_strain);
     const BoundaryConditions conditions =
         knee_conditions(knee, loaded.axis.axis, settings.angles_deg.back());
     std::unique_ptr<KneeContact> contact;

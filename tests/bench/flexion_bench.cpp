@@ -35,8 +35,7 @@ void BM_InteractiveFlexion(benchmark::State& state)
     settings.contact.barrier.d_hat_mm = static_cast<double>(state.range(0)) / 10.0;
   settings.contact.grid.band_mm = std::max(1.0, settings.contact.barrier.d_hat_mm + 0.4);
   const ResolvedAxis axis = resolve_flexion_axis(model, settings.axis);
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const BoundaryConditions conditions = knee_conditions(model, axis.axis, 90.0);
   const KneeContact contact(model, conditions, settings.contact,
                             std::filesystem::path(folder ? folder : "out/mcl6k") / "contact");

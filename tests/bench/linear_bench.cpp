@@ -65,10 +65,8 @@ std::unique_ptr<Problem> make_mcl()
   FlexionSettings settings;
   settings.axis.posterior = Eigen::Vector3d(0.0, -1.0, 0.0);
   const ResolvedAxis axis = resolve_flexion_axis(model, settings.axis);
-  return std::make_unique<Problem>(
-      HyperelasticBody(model.mesh, settings.material,
-                       prestretched_fibers(model, settings.in_situ_strain)),
-      knee_conditions(model, axis.axis, 90.0));
+  return std::make_unique<Problem>(ligament_body(model, settings.material, settings.in_situ_strain),
+                                   knee_conditions(model, axis.axis, 90.0));
 }
 
 /// The problem of the benchmark's argument, built once.

@@ -364,8 +364,7 @@ TEST(FebWriter, AReshapedOverlapIsWrittenAsTheRestShapeTheSweepUses)
 
   // The sweep's own rest shape, reshaped by the same push.
   Eigen::VectorXd swept_rest;
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const SweepResult sweep = run_flexion_sweep(
       body, conditions, settings,
       [&](const AngleResult&, const HyperelasticBody& swept, const Eigen::VectorXd&) {

@@ -60,8 +60,7 @@ Sweep sweep(const KneeModel& model, const BoundaryConditions& conditions,
             const FlexionSettings& settings)
 {
   ligsim::Progress::set_quiet(true);
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   Sweep run;
   run.result = run_flexion_sweep(body, conditions, settings,
                                  [&](const AngleResult&, const HyperelasticBody&,

@@ -138,3 +138,36 @@ TEST(KneeModel, EachMissingPieceIsNamed)
   fs::create_directories(empty);
   EXPECT_NE(load_error(empty).find("model.vtu"), std::string::npos);
 }
+
+TEST(KneeModel, WithQuadraticTetsBindsTheMidEdgeNodesOfBoundEdges)
+{
+  KneeModel model;
+  model.mesh = structured_box_mesh({1, 1, 3}, {2.0, 2.0, 6.0});
+  model.fiber_directions = Eigen::MatrixX3d::Zero(model.mesh.T.rows(), 3);
+  model.fiber_directions.col(2).setOnes();
+  for (Eigen::Index n = 0; n < model.mesh.V.rows(); ++n) {
+    if (model.mesh.V(n, 2) < 1e-9)
+      model.tibia_nodes.push_back(static_cast<int>(n));
+    if (model.mesh.V(n, 2) > 6.0 - 1e-9)
+      model.femur_nodes.push_back(static_cast<int>(n));
+  }
+  const KneeModel quadratic = with_quadratic_tets(model);
+  ASSERT_EQ(quadratic.tet10.rows(), model.mesh.T.rows());
+  EXPECT_EQ(quadratic.mesh.T, model.mesh.T);
+  EXPECT_EQ(quadratic.mesh.V.topRows(model.mesh.V.rows()), model.mesh.V);
+  // The bound faces' mid-edge nodes join their footprints: on a face of one hex split into
+  // tets, its 4 edges and the diagonal, 5 nodes beside the 4 corners.
+  EXPECT_EQ(quadratic.tibia_nodes.size(), model.tibia_nodes.size() + 5);
+  EXPECT_EQ(quadratic.femur_nodes.size(), model.femur_nodes.size() + 5);
+  for (int n : quadratic.tibia_nodes)
+    EXPECT_NEAR(quadratic.mesh.V(n, 2), 0.0, 1e-12) << "node " << n;
+  for (int n : quadratic.femur_nodes)
+    EXPECT_NEAR(quadratic.mesh.V(n, 2), 6.0, 1e-12) << "node " << n;
+
+  const HyperelasticBody body = ligament_body(quadratic, mcl_material(), 0.029);
+  EXPECT_TRUE(body.quadratic());
+  EXPECT_NEAR(body.rest_volume(), 24.0, 1e-12);
+  EXPECT_NEAR(body.fiber(3).norm(), 1.029, 1e-15);
+  EXPECT_FALSE(ligament_body(model, mcl_material(), 0.0).quadratic());
+  EXPECT_EQ(with_quadratic_tets(quadratic).mesh.V.rows(), quadratic.mesh.V.rows());
+}

@@ -172,8 +172,7 @@ TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
   model.tibia = box({-20.0, -20.0, 6.0}, {0.4, 24.0, 14.0});
   FlexionSettings settings;
   settings.in_situ_strain = 0.0;
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const BoundaryConditions conditions =
       knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
   ContactConfig config;
@@ -204,6 +203,42 @@ TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
   EXPECT_EQ(clear, body.rest_positions());
 }
 
+TEST(InitialOverlap, AQuadraticBarsMidEdgeNodesArePushedOutToo)
+{
+  // A ridge of bone 0.3 mm into the bar's -x side between two layers of its corner nodes
+  // (z = 7.5 and 10): only mid-edge nodes (z = 8.75) are inside, and contact must see them.
+  ligsim::Progress::set_quiet(true);
+  const KneeModel linear = bar_knee();
+  KneeModel model = with_quadratic_tets(linear);
+  model.tibia = box({-20.0, -20.0, 8.0}, {0.3, 24.0, 9.5});
+  FlexionSettings settings;
+  settings.in_situ_strain = 0.0;
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
+  ASSERT_TRUE(body.quadratic());
+  const BoundaryConditions conditions =
+      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
+  ContactConfig config;
+  config.bones = {"tibia"};
+  const fs::path cache = fs::temp_directory_path() / "ligsim_quadratic_overlap_cache";
+  fs::remove_all(cache);
+  const KneeContact contact(model, conditions, config, cache);
+  Eigen::VectorXd x = body.rest_positions();
+  const OverlapReport report =
+      resolve_initial_overlap(body, conditions, contact, settings.newton, x);
+  ASSERT_TRUE(report.pushed);
+  EXPECT_GT(report.before[0].inside, 0);
+  EXPECT_EQ(report.after[0].inside, 0);
+  int pressed = 0;
+  for (Eigen::Index n = linear.mesh.V.rows(); n < model.mesh.V.rows(); ++n) {
+    const Eigen::RowVector3d rest = model.mesh.V.row(n);
+    if (rest.x() > 1e-9 || rest.z() < 8.0 || rest.z() > 9.5)
+      continue;
+    ++pressed;
+    EXPECT_GT(x(3 * n), 0.3) << "mid-edge node " << n << " left in the bone";
+  }
+  EXPECT_GE(pressed, 3);
+}
+
 TEST(InitialOverlap, AReshapingPushLeavesNoStrainBehind)
 {
   ligsim::Progress::set_quiet(true);
@@ -219,8 +254,7 @@ TEST(InitialOverlap, AReshapingPushLeavesNoStrainBehind)
     settings.in_situ_strain = 0.0;
     settings.contact.bones = {"tibia"};
     settings.contact.reshape_overlap = reshape;
-    const HyperelasticBody body(model.mesh, settings.material,
-                                prestretched_fibers(model, settings.in_situ_strain));
+    const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
     const KneeContact contact(model, conditions, settings.contact, cache);
     Eigen::VectorXd rest_of_swept;
     const SweepResult sweep = run_flexion_sweep(
@@ -263,8 +297,7 @@ TEST(KneeFlexion, TheFemursNetForceAddsItsContactToItsFootprint)
   settings.angles_deg = {0.0, 10.0};
   settings.in_situ_strain = 0.03;
   settings.contact.bones = {"femur", "tibia"};
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const KneeContact contact(model, conditions, settings.contact, cache);
   const SweepResult sweep = run_flexion_sweep(
       body, conditions, settings,
@@ -287,8 +320,7 @@ TEST(Plausibility, ABadAxisIsSaidOutLoud)
   FlexionSettings settings;
   settings.angles_deg = {0.0, 30.0};
   settings.images = false;
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const EmbeddedPolyline centerline(model.mesh, model.centerline);
   const auto warnings_of = [&](const FlexionAxis& axis) {
     PlausibilityContext context{settings.ligament, footprints(model, axis), settings.in_situ_strain,
@@ -504,8 +536,7 @@ TEST(KneeMotion, APureRotationTableGivesTheAxisSweepToRoundOff)
   settings.anatomy.posterior = -Eigen::Vector3d::UnitY();
   settings.anatomy.side = "left";
   settings.angles_deg = {0.0, 20.0, 40.0};
-  const HyperelasticBody body(model.mesh, settings.material,
-                              prestretched_fibers(model, settings.in_situ_strain));
+  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const auto sweep_of = [&](const FlexionSettings& s) {
     const KneeMotion motion = resolve_knee_motion(model, s);
     const SweepSteps steps = motion_steps(motion);
