@@ -1,6 +1,7 @@
 #include "sim/mesh/quadratic_tet.hpp"
 
 #include "common/error.hpp"
+#include "sim/mesh/element_nodes.hpp"
 
 #include <Eigen/LU>
 
@@ -111,23 +112,12 @@ QuadraticTetShape quadratic_tet_shape(const QuadraticTetRows& X, const Quadratur
 std::vector<QuadraticTetShape> compute_rest_shapes(const QuadraticTetMesh& mesh,
                                                    const QuadratureRule& rule)
 {
-  const Eigen::Index node_count = mesh.V.rows();
-  for (Eigen::Index n = 0; n < node_count; ++n)
-    if (!mesh.V.row(n).allFinite())
-      fail("node {} has a non-finite coordinate ({}, {}, {})", n, mesh.V(n, 0), mesh.V(n, 1),
-           mesh.V(n, 2));
-  if (mesh.T.rows() == 0)
-    fail("the mesh has no tetrahedra");
-
+  check_element_nodes(mesh.V, mesh.T);
   std::vector<QuadraticTetShape> shapes(static_cast<std::size_t>(mesh.T.rows()));
   for (Eigen::Index e = 0; e < mesh.T.rows(); ++e) {
     QuadraticTetRows X;
-    for (int i = 0; i < 10; ++i) {
-      const int node = mesh.T(e, i);
-      if (node < 0 || node >= node_count)
-        fail("element {} refers to node {}, but the mesh has {} nodes", e, node, node_count);
-      X.row(i) = mesh.V.row(node);
-    }
+    for (int i = 0; i < 10; ++i)
+      X.row(i) = mesh.V.row(mesh.T(e, i));
     const double scale = (X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff();
     const double folded = 1e-12 * scale * scale * scale;
     for (int i = 0; i < 4; ++i) {

@@ -1,6 +1,7 @@
 #include "sim/mesh/tet_shape.hpp"
 
 #include "common/error.hpp"
+#include "sim/mesh/element_nodes.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -28,23 +29,12 @@ TetShape tet_shape(const TetCorners& P)
 
 std::vector<TetShape> compute_rest_shapes(const TetMesh& mesh)
 {
-  const Eigen::Index node_count = mesh.V.rows();
-  for (Eigen::Index n = 0; n < node_count; ++n)
-    if (!mesh.V.row(n).allFinite())
-      fail("node {} has a non-finite coordinate ({}, {}, {})", n, mesh.V(n, 0), mesh.V(n, 1),
-           mesh.V(n, 2));
-  if (mesh.T.rows() == 0)
-    fail("the mesh has no tetrahedra");
-
+  check_element_nodes(mesh.V, mesh.T);
   std::vector<TetShape> shapes(static_cast<std::size_t>(mesh.T.rows()));
   for (Eigen::Index e = 0; e < mesh.T.rows(); ++e) {
     TetCorners P;
-    for (int i = 0; i < 4; ++i) {
-      const int node = mesh.T(e, i);
-      if (node < 0 || node >= node_count)
-        fail("element {} refers to node {}, but the mesh has {} nodes", e, node, node_count);
-      P.row(i) = mesh.V.row(node);
-    }
+    for (int i = 0; i < 4; ++i)
+      P.row(i) = mesh.V.row(mesh.T(e, i));
     double longest_edge = 0.0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
