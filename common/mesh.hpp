@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+
 namespace ligsim {
 
 /// Row-major so that a row (one point, one element) is contiguous, as in VTK's arrays.
@@ -22,6 +24,20 @@ struct TriangleSurface {
 struct TetMesh {
   Points V;
   Tetrahedra T;
+};
+
+/// Nodes of each element: the corners 0-3, then the mid-edge nodes of the edges
+/// (0,1), (1,2), (2,0), (0,3), (1,3), (2,3), FEBio's tet10 and VTK_QUADRATIC_TETRA order.
+using QuadraticTetrahedra = Eigen::Matrix<int, Eigen::Dynamic, 10, Eigen::RowMajor>;
+
+/// The corners of the edge that each mid-edge node 4-9 sits on.
+inline constexpr std::array<std::array<int, 2>, 6> kQuadraticTetEdges = {
+    {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
+
+/// A quadratic tet mesh: V (#V x 3, mm), T (#T x 10 node indices, corners positively oriented).
+struct QuadraticTetMesh {
+  Points V;
+  QuadraticTetrahedra T;
 };
 
 } // namespace ligsim

@@ -235,8 +235,9 @@ nlohmann::json report_thin_ligaments(const pipeline::KneeConfig& knee, const fs:
   nlohmann::json json = nlohmann::json::object();
   for (const pipeline::LigamentConfig& ligament : knee.ligaments) {
     const fs::path dir = out / ligament.name;
+    QuadraticTetrahedra tet10; // the corners are the volume's
     const auto thickness =
-        sim::ligament_thickness(pipeline::load_mesh(dir / pipeline::files::model),
+        sim::ligament_thickness(pipeline::load_mesh(dir / pipeline::files::model, &tet10),
                                 io::points_of(read_vtp(dir / pipeline::files::centerline)));
     if (!thickness)
       continue;

@@ -9,6 +9,7 @@
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/contact_potential.hpp"
 #include "sim/contact/contact_surface.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "sim/scene/scene_output.hpp"
 #include "stages/io/surface_reader.hpp"
 
@@ -77,7 +78,9 @@ std::unique_ptr<SceneContact> scene_contact(const Scene& scene, const fs::path& 
     obstacles.push_back(obstacle);
   }
   contact->potential = std::make_unique<ContactPotential>(
-      static_cast<int>(scene.mesh.V.rows()), free_boundary_surface(scene.mesh, scene.conditions),
+      static_cast<int>(scene.mesh.V.rows()),
+      free_boundary_surface(scene.mesh, scene.conditions,
+                            scene.tet10.rows() > 0 ? &scene.tet10 : nullptr),
       std::move(obstacles), scene.contact.barrier);
   contact->figures["d_hat_mm"] = scene.contact.barrier.d_hat_mm;
   contact->figures["stiffness_mpa_per_mm"] = scene.contact.barrier.stiffness_mpa_per_mm;
@@ -108,7 +111,11 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
 {
   ensure_directory(out);
   StageMeter setup_meter;
-  const HyperelasticBody body(scene.mesh, scene.material, scene.fibers);
+  const HyperelasticBody body =
+      scene.tet10.rows() == 0
+          ? HyperelasticBody(scene.mesh, scene.material, scene.fibers)
+          : HyperelasticBody(QuadraticTetMesh{scene.mesh.V, scene.tet10}, scene.material,
+                             scene.fibers, tet_quadrature(kQuadraticTetRuleDegree));
   const std::unique_ptr<SceneContact> contact = scene_contact(scene, out);
   summary.add_stage("setup", setup_meter,
                     {{"nodes", body.node_count()},

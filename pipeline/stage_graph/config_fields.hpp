@@ -94,6 +94,7 @@ template <class P, class Visit> void visit_tetmesh(P& p, Visit&& visit)
   visit("exude_slivers", p.exude_slivers);
   visit("perturb", p.perturb);
   visit("seed", p.seed);
+  visit("order", p.order);
 }
 
 template <class P, class Visit> void visit_fibers(P& p, Visit&& visit)

@@ -4,6 +4,7 @@
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "stages/centerline/centerline.hpp"
 #include "stages/fibers/fibers.hpp"
 #include "stages/field/field.hpp"
@@ -12,12 +13,16 @@
 #include "stages/geometry/surface_query.hpp"
 #include "stages/io/vtk_convert.hpp"
 
+#include <fmt/format.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace ligsim::pipeline {
 
@@ -62,6 +67,51 @@ vtkSmartPointer<vtkPolyData> fiber_lines(const TetMesh& mesh, const Eigen::Matri
   polydata->SetLines(lines);
   io::add_array(polydata->GetCellData(), "fiber", directions);
   return polydata;
+}
+
+/// The fiber at each point of the rule of sim::kQuadraticTetRuleDegree of every 10-node tet
+/// (element-major, 3 columns per point), sampled from the field where the curved element puts
+/// the point, its sense that of the element's fiber.
+Eigen::MatrixXd fibers_at_points(const QuadraticTetMesh& mesh, const fibers::FiberField& field,
+                                 const Eigen::MatrixX3d& per_tet)
+{
+  const sim::QuadratureRule rule = sim::tet_quadrature(sim::kQuadraticTetRuleDegree);
+  const Eigen::Map<const Eigen::VectorXd> flat(mesh.V.data(), mesh.V.size());
+  Eigen::MatrixXd fibers(mesh.T.rows(), 3 * static_cast<Eigen::Index>(rule.points.size()));
+  for (Eigen::Index e = 0; e < mesh.T.rows(); ++e) {
+    const sim::QuadraticTetRows X = sim::quadratic_tet_nodes(mesh.T, e, flat);
+    for (std::size_t q = 0; q < rule.points.size(); ++q) {
+      const Eigen::Vector3d x = X.transpose() * sim::quadratic_shape_functions(rule.points[q]);
+      Eigen::Vector3d a = field.at(x).direction;
+      if (a.dot(per_tet.row(e)) < 0.0)
+        a = -a;
+      fibers.block<1, 3>(e, 3 * static_cast<Eigen::Index>(q)) = a.transpose();
+    }
+  }
+  return fibers;
+}
+
+/// How far the fibers at the points turn from their tet's (one sample each, where the tet's
+/// averages several).
+nlohmann::json points_json(const Eigen::MatrixXd& points, const Eigen::MatrixX3d& per_tet)
+{
+  double sum_deg = 0.0;
+  int over_30 = 0;
+  const Eigen::Index per_element = points.cols() / 3;
+  for (Eigen::Index e = 0; e < points.rows(); ++e)
+    for (Eigen::Index q = 0; q < per_element; ++q) {
+      const double cosine = std::min(1.0, points.block<1, 3>(e, 3 * q).dot(per_tet.row(e)));
+      const double degrees = std::acos(cosine) * 180.0 / M_PI;
+      sum_deg += degrees;
+      over_30 += degrees > 30.0;
+    }
+  return {
+      {"array", sim::kFibersAtPoints},
+      {"points_per_tet", per_element},
+      {"mean_angle_to_tet_fiber_deg", sum_deg / static_cast<double>(points.rows() * per_element)},
+      {"points_over_30_deg_from_tet_fiber", over_30},
+      {"rule", "one fiber sampled at each point of the 4-point rule of every 10-node tet, "
+               "where the curved tet puts it"}};
 }
 
 } // namespace
@@ -114,19 +164,31 @@ nlohmann::json run_field(const BuildConfig& config, const fs::path& dir)
 
 nlohmann::json run_fibers(const BuildConfig& config, const fs::path& dir)
 {
-  const TetMesh mesh = load_mesh(dir / files::mesh);
+  QuadraticTetrahedra tet10;
+  const TetMesh mesh = load_mesh(dir / files::mesh, &tet10);
   const Polyline line = load_centerline(dir);
   const fibers::FiberField field(line, load_field(dir), load_mask(dir));
   const fibers::Result result = fibers::per_tet_directions(mesh, field, config.fibers);
 
-  auto grid = io::to_unstructured_grid(mesh);
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  Eigen::MatrixXd points; // 10-node tets: the fibers at their quadrature points
+  if (tet10.rows() == 0) {
+    grid = io::to_unstructured_grid(mesh);
+  } else {
+    grid = io::to_unstructured_grid(QuadraticTetMesh{mesh.V, tet10});
+    points = fibers_at_points(QuadraticTetMesh{mesh.V, tet10}, field, result.directions);
+    io::add_array(grid->GetCellData(), sim::kFibersAtPoints, points);
+  }
   io::add_array(grid->GetCellData(), "fiber", result.directions);
   write_vtk(grid, dir / files::fibers);
   write_vtk(fiber_lines(mesh, result.directions), dir / files::fiber_lines);
-  return {{"tets", mesh.T.rows()},
-          {"samples_per_tet", config.fibers.samples_per_tet},
-          {"unprojected_samples", result.unprojected_samples},
-          {"mean_angle_to_centerline_deg", result.mean_alignment_deg}};
+  nlohmann::json figures = {{"tets", mesh.T.rows()},
+                            {"samples_per_tet", config.fibers.samples_per_tet},
+                            {"unprojected_samples", result.unprojected_samples},
+                            {"mean_angle_to_centerline_deg", result.mean_alignment_deg}};
+  if (tet10.rows() > 0)
+    figures["fibers_at_points"] = points_json(points, result.directions);
+  return figures;
 }
 
 } // namespace ligsim::pipeline

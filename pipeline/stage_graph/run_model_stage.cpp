@@ -4,6 +4,7 @@
 #include "pipeline/stage_graph/stage_files.hpp"
 
 #include "common/vtk_files.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "stages/io/vtk_convert.hpp"
 #include "stages/model/model.hpp"
 
@@ -25,7 +26,8 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   const TriangleSurface ligament = load_ligament(config);
   const StoredAttachments areas = load_attachments(dir);
   auto fibers_grid = read_vtu(dir / files::fibers);
-  const TetMesh mesh = io::from_unstructured_grid(fibers_grid);
+  QuadraticTetrahedra tet10; // for 10-node tets: mesh has their corners, over all their nodes
+  const TetMesh mesh = io::from_unstructured_grid(fibers_grid, &tet10);
   const Eigen::MatrixX3d directions = io::get_array(fibers_grid->GetCellData(), "fiber");
   model::Model built =
       model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
@@ -51,7 +53,17 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   const model::FootprintClosing closed =
       model::close_footprints_in_bones(built, femur ? &*femur : nullptr, tibia ? &*tibia : nullptr);
 
-  auto grid = io::to_unstructured_grid(built.mesh);
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  if (tet10.rows() == 0) {
+    grid = io::to_unstructured_grid(built.mesh);
+  } else {
+    sim::flag_mid_edge_nodes(tet10, built.femur_nodes);
+    sim::flag_mid_edge_nodes(tet10, built.tibia_nodes);
+    grid = io::to_unstructured_grid(QuadraticTetMesh{built.mesh.V, tet10});
+    io::add_array(grid->GetCellData(), sim::kFibersAtPoints,
+                  (1.0 + config.model.in_situ_strain) *
+                      io::get_array(fibers_grid->GetCellData(), sim::kFibersAtPoints));
+  }
   io::add_array(grid->GetCellData(), "fiber", built.fibers);
   io::add_flags(grid->GetPointData(), "femur_attached", built.femur_nodes);
   io::add_flags(grid->GetPointData(), "tibia_attached", built.tibia_nodes);
@@ -71,6 +83,7 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   };
   return {
       {"tets", built.mesh.T.rows()},
+      {"nodes_per_tet", tet10.rows() == 0 ? 4 : 10},
       {"nodes", built.mesh.V.rows()},
       {"boundary_nodes", built.boundary_nodes},
       {"femur_nodes", count(built.femur_nodes)},

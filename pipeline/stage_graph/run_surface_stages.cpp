@@ -4,6 +4,8 @@
 
 #include "common/progress.hpp"
 #include "common/vtk_files.hpp"
+#include "sim/mesh/curved_boundary.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 #include "stages/attachments/attachments.hpp"
 #include "stages/distance/distance.hpp"
 #include "stages/geometry/grid_vdb.hpp"
@@ -121,22 +123,44 @@ nlohmann::json run_tetmesh(const BuildConfig& config, const fs::path& dir)
 {
   const TriangleSurface ligament = load_ligament(config);
   const tetmesh::Result result = tetmesh::make_tet_mesh(ligament, config.tetmesh);
-  write_vtk(io::to_unstructured_grid(result.mesh), dir / files::mesh);
   const tetmesh::Quality& q = result.quality;
-  return {{"tets", q.tets},
-          {"nodes", q.nodes},
-          {"min_dihedral_deg", q.min_dihedral_deg},
-          {"max_dihedral_deg", q.max_dihedral_deg},
-          {"worst_radius_edge_ratio", q.worst_radius_edge_ratio},
-          {"min_volume_mm3", q.min_volume_mm3},
-          {"total_volume_mm3", q.total_volume_mm3},
-          {"surface_volume_mm3", q.surface_volume_mm3},
-          {"max_surface_distance_mm", q.max_surface_distance_mm},
-          {"max_facet_circumcentre_distance_mm", q.max_facet_circumcentre_distance_mm},
-          {"used",
-           {{"cell_size_mm", result.used.cell_size_mm},
-            {"facet_size_mm", result.used.facet_size_mm},
-            {"facet_distance_mm", result.used.facet_distance_mm}}}};
+  nlohmann::json report = {
+      {"tets", q.tets},
+      {"nodes", q.nodes},
+      {"min_dihedral_deg", q.min_dihedral_deg},
+      {"max_dihedral_deg", q.max_dihedral_deg},
+      {"worst_radius_edge_ratio", q.worst_radius_edge_ratio},
+      {"min_volume_mm3", q.min_volume_mm3},
+      {"total_volume_mm3", q.total_volume_mm3},
+      {"surface_volume_mm3", q.surface_volume_mm3},
+      {"max_surface_distance_mm", q.max_surface_distance_mm},
+      {"max_facet_circumcentre_distance_mm", q.max_facet_circumcentre_distance_mm},
+      {"used",
+       {{"cell_size_mm", result.used.cell_size_mm},
+        {"facet_size_mm", result.used.facet_size_mm},
+        {"facet_distance_mm", result.used.facet_distance_mm},
+        {"order", result.used.order}}}};
+  if (result.used.order == 1) {
+    write_vtk(io::to_unstructured_grid(result.mesh), dir / files::mesh);
+    return report;
+  }
+  QuadraticTetMesh quadratic = sim::promote_to_quadratic(result.mesh);
+  const sim::CurvedBoundary curved = sim::curve_boundary_to_surface(quadratic, ligament);
+  write_vtk(io::to_unstructured_grid(quadratic), dir / files::mesh);
+  report["quadratic"] = {
+      {"nodes", quadratic.V.rows()},
+      {"boundary_mid_nodes", curved.boundary_mid_nodes},
+      {"moved_onto_surface", curved.moved},
+      {"moved_part_way", curved.moved_part_way},
+      {"left_straight", curved.left_straight},
+      {"max_offset_mm", curved.max_offset_mm},
+      {"max_gap_to_surface_mm", curved.max_gap_mm},
+      {"min_jacobian_ratio", curved.min_jacobian_ratio},
+      {"rule", fmt::format("a boundary edge's mid-edge node moves to the nearest point of the "
+                           "surface, halved while an element around it would keep less than {} "
+                           "of its straight volume density",
+                           sim::kMinCurvedJacobianRatio)}};
+  return report;
 }
 
 } // namespace ligsim::pipeline

@@ -91,9 +91,13 @@ Polyline load_centerline(const fs::path& dir)
   return Polyline(io::points_of(polydata), tangents);
 }
 
-TetMesh load_mesh(const fs::path& file)
+TetMesh load_mesh(const fs::path& file, QuadraticTetrahedra* tet10)
 {
-  return io::from_unstructured_grid(read_vtu(file));
+  try {
+    return io::from_unstructured_grid(read_vtu(file), tet10);
+  } catch (const InputError& error) {
+    fail("{}: {}", file.string(), error.what());
+  }
 }
 
 StoredAttachments load_attachments(const fs::path& dir)

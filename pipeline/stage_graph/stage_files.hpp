@@ -58,7 +58,9 @@ Mask load_mask(const std::filesystem::path& dir);
 ScalarGrid load_distance(const std::filesystem::path& dir);
 ScalarGrid load_field(const std::filesystem::path& dir);
 Polyline load_centerline(const std::filesystem::path& dir);
-TetMesh load_mesh(const std::filesystem::path& file);
+/// The tets of a .vtu file; of 10-node tets their corners, with all their nodes in `tet10` when
+/// given (io::from_unstructured_grid).
+TetMesh load_mesh(const std::filesystem::path& file, QuadraticTetrahedra* tet10 = nullptr);
 
 /// The two attachment areas stored by the attachments stage: sorted vertex indices.
 struct StoredAttachments {

@@ -21,7 +21,13 @@ CrossCheck cross_check_with_febio(const KneeModel& given, const FlexionSettings&
   const BoundaryConditions conditions = knee_conditions(given, femur_rigid_motion(motion));
   const SweepSteps steps = motion_steps(motion);
   // Reshaped, both programs start from the shape pushed out of the bones.
-  const KneeModel model = feb_start_model(given, settings, conditions);
+  KneeModel model = feb_start_model(given, settings, conditions);
+  if (model.fiber_directions_at_points.rows() > 0) {
+    // FEBio's file takes one fiber per element: both programs use the element's.
+    model.fiber_directions_at_points.resize(0, 3);
+    check.warnings.push_back("the model's fibers at the quadrature points are replaced by each "
+                             "tet's own fiber in both programs: FEBio's file takes one per tet");
+  }
   const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
   const KneeContact contact(model, conditions, settings.contact, settings.model_dir / "contact");
   const SweepResult sweep = run_flexion_sweep(body, conditions, settings, {}, &contact, &steps);

@@ -75,6 +75,9 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   problem.ligament = model.mesh;
   problem.ligament_tet10 = model.tet10;
   problem.fiber_directions = model.fiber_directions;
+  if (model.fiber_directions_at_points.rows() > 0)
+    warnings.push_back("FEBio gets one fiber per tet, the tet's own: the model's fibers at the "
+                       "quadrature points of its 10-node tets do not go into the file");
   problem.material = settings.material;
   problem.in_situ_strain = settings.in_situ_strain;
   problem.step_labels = steps.angles_deg;

@@ -145,23 +145,15 @@ KneeModel with_quadratic_tets(const KneeModel& model)
   const QuadraticTetMesh promoted = promote_to_quadratic(model.mesh);
   quadratic.mesh.V = promoted.V;
   quadratic.tet10 = promoted.T;
-  // A mid-edge node is bound where its edge's two ends are: the edge then lies in the footprint.
   auto extended = [&](const std::vector<int>& nodes) {
     std::vector<bool> bound(static_cast<std::size_t>(promoted.V.rows()), false);
     for (int n : nodes)
       bound[static_cast<std::size_t>(n)] = true;
+    flag_mid_edge_nodes(promoted.T, bound);
     std::vector<int> result = nodes;
-    std::vector<bool> added(bound.size(), false);
-    for (Eigen::Index e = 0; e < promoted.T.rows(); ++e)
-      for (int k = 0; k < 6; ++k) {
-        const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
-        const auto mid = static_cast<std::size_t>(promoted.T(e, 4 + k));
-        if (!added[mid] && bound[static_cast<std::size_t>(promoted.T(e, i))] &&
-            bound[static_cast<std::size_t>(promoted.T(e, j))]) {
-          added[mid] = true;
-          result.push_back(static_cast<int>(mid));
-        }
-      }
+    for (auto n = static_cast<std::size_t>(model.mesh.V.rows()); n < bound.size(); ++n)
+      if (bound[n])
+        result.push_back(static_cast<int>(n));
     return result;
   };
   quadratic.femur_nodes = extended(model.femur_nodes);
@@ -172,11 +164,14 @@ KneeModel with_quadratic_tets(const KneeModel& model)
 HyperelasticBody ligament_body(const KneeModel& model, const MaterialParameters& material,
                                double in_situ_strain)
 {
-  FiberField fibers = model.fiber_directions * (1.0 + in_situ_strain);
   if (model.tet10.rows() == 0)
-    return HyperelasticBody(model.mesh, material, std::move(fibers));
-  return HyperelasticBody(QuadraticTetMesh{model.mesh.V, model.tet10}, material, std::move(fibers),
-                          tet_quadrature(2));
+    return HyperelasticBody(model.mesh, material, model.fiber_directions * (1.0 + in_situ_strain));
+  const Eigen::MatrixX3d& directions = model.fiber_directions_at_points.rows() > 0
+                                           ? model.fiber_directions_at_points
+                                           : model.fiber_directions;
+  return HyperelasticBody(QuadraticTetMesh{model.mesh.V, model.tet10}, material,
+                          directions * (1.0 + in_situ_strain),
+                          tet_quadrature(kQuadraticTetRuleDegree));
 }
 
 KneeModel load_knee_model(const fs::path& dir)
@@ -191,6 +186,7 @@ KneeModel load_knee_model(const fs::path& dir)
   VtuMesh vtu = read_vtu_mesh(file);
   KneeModel model;
   model.mesh = std::move(vtu.mesh);
+  model.tet10 = std::move(vtu.tet10);
 
   const auto fibers = vtu.cell_data.find("fiber");
   if (fibers == vtu.cell_data.end() || fibers->second.cols() != 3)
@@ -201,6 +197,22 @@ KneeModel load_knee_model(const fs::path& dir)
     if (!a.allFinite() || a.norm() < 1e-9)
       fail("{}: the fiber of tet {} is zero or not finite", file.string(), e);
     model.fiber_directions.row(e) = a.normalized().transpose();
+  }
+  if (const auto at_points = vtu.cell_data.find(kFibersAtPoints);
+      model.tet10.rows() > 0 && at_points != vtu.cell_data.end()) {
+    const int points = static_cast<int>(tet_quadrature(kQuadraticTetRuleDegree).points.size());
+    if (at_points->second.cols() != 3 * points)
+      fail("{}: cell data '{}' has {} components, not 3 for each of the {} points of a tet",
+           file.string(), kFibersAtPoints, at_points->second.cols(), points);
+    model.fiber_directions_at_points.resize(at_points->second.rows() * points, 3);
+    for (Eigen::Index e = 0; e < at_points->second.rows(); ++e)
+      for (int q = 0; q < points; ++q) {
+        const Eigen::Vector3d a = at_points->second.block<1, 3>(e, 3 * q).transpose();
+        if (!a.allFinite() || a.norm() < 1e-9)
+          fail("{}: the fiber of tet {} at its point {} is zero or not finite", file.string(), e,
+               q);
+        model.fiber_directions_at_points.row(e * points + q) = a.normalized().transpose();
+      }
   }
 
   model.femur_nodes = flagged_nodes(vtu, file, "femur_attached", "femur");

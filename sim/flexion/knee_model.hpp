@@ -31,8 +31,11 @@ struct KneeModel {
   /// The ligament's 10-node tets over mesh.V (corners first), when not empty.
   QuadraticTetrahedra tet10;
   Eigen::MatrixX3d fiber_directions; ///< unit, one row per tet
-  std::vector<int> femur_nodes;      ///< move rigidly with the femur
-  std::vector<int> tibia_nodes;      ///< stay with the (fixed) distal bone: tibia or fibula
+  /// With `tet10`: unit, one row per point of the rule of kQuadraticTetRuleDegree of every tet
+  /// (element-major), sampled there by the build; empty: fiber_directions throughout each tet.
+  Eigen::MatrixX3d fiber_directions_at_points;
+  std::vector<int> femur_nodes; ///< move rigidly with the femur
+  std::vector<int> tibia_nodes; ///< stay with the (fixed) distal bone: tibia or fibula
   BoneSurface femur;
   BoneSurface tibia;
   BoneSurface fibula;                ///< null when the knee has none; moves with the tibia
@@ -46,14 +49,15 @@ struct KneeModel {
 KneeModel with_quadratic_tets(const KneeModel& model);
 
 /// The model's ligament as a body of `material`: its linear tets, or its 10-node tets with the
-/// 4-point rule (degree 2, FEBio's TET10G4); its fibers with the in-situ pre-stretch (unit
-/// direction times 1 + in_situ_strain).
+/// 4-point rule (kQuadraticTetRuleDegree, FEBio's TET10G4); its fibers (at the points where the
+/// model has them) with the in-situ pre-stretch (unit direction times 1 + in_situ_strain).
 HyperelasticBody ligament_body(const KneeModel& model, const MaterialParameters& material,
                                double in_situ_strain);
 
-/// Reads the model folder. Throws InputError naming the file and what is missing: the folder,
-/// model.vtu, its "fiber" cell array or attachment flags, an empty or overlapping attachment
-/// set, a bone surface, a fiber of zero length.
+/// Reads the model folder, of linear or 10-node tets. Throws InputError naming the file and what
+/// is missing: the folder, model.vtu, its "fiber" cell array (and for 10-node tets its fibers at
+/// the points, when it has them, one per point) or attachment flags, an empty or overlapping
+/// attachment set, a bone surface, a fiber of zero length.
 KneeModel load_knee_model(const std::filesystem::path& dir);
 
 /// What a one-ligament model was built with: its scene.toml's material and the in-situ strain

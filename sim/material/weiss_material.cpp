@@ -212,7 +212,8 @@ ElementMeasures WeissMaterial::measures_at(const Eigen::Matrix3d& F,
     return result;
   result.energy_density_mpa = state.energy_density;
   if (m_fiber_law) {
-    result.fiber_stretch = (F * fiber).norm();
+    result.deformed_fiber = F * fiber;
+    result.fiber_stretch = result.deformed_fiber.norm();
     result.deviatoric_fiber_stretch = std::pow(state.J, -1.0 / 3.0) * result.fiber_stretch;
   }
   return result;

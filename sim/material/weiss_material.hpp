@@ -45,6 +45,8 @@ struct ElementMeasures {
   double fiber_stretch = 0.0;
   /// Deviatoric stretch lambda = sqrt(I4) that the fiber law sees; 0 without fibers.
   double deviatoric_fiber_stretch = 0.0;
+  /// F a, the fiber as deformed (its length the fiber stretch); zero without fibers.
+  Eigen::Vector3d deformed_fiber = Eigen::Vector3d::Zero();
 };
 
 class WeissMaterial {

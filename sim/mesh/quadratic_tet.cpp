@@ -109,6 +109,20 @@ QuadraticTetShape quadratic_tet_shape(const QuadraticTetRows& X, const Quadratur
   return shape;
 }
 
+double jacobian_ratio(const QuadraticTetRows& X, const QuadratureRule& rule)
+{
+  const Eigen::Matrix3d edges = (X.middleRows<3>(1).rowwise() - X.row(0)).transpose();
+  const double straight = edges.determinant();
+  double smallest = INFINITY;
+  for (int i = 0; i < 4; ++i)
+    smallest = std::min(
+        smallest, reference_jacobian(X, quadratic_shape_derivatives(corner(i))).determinant());
+  for (const Eigen::Vector4d& l : rule.points)
+    smallest =
+        std::min(smallest, reference_jacobian(X, quadratic_shape_derivatives(l)).determinant());
+  return smallest / straight;
+}
+
 std::vector<QuadraticTetShape> compute_rest_shapes(const QuadraticTetMesh& mesh,
                                                    const QuadratureRule& rule)
 {
@@ -137,6 +151,17 @@ std::vector<QuadraticTetShape> compute_rest_shapes(const QuadraticTetMesh& mesh,
     shapes[static_cast<std::size_t>(e)] = std::move(shape);
   }
   return shapes;
+}
+
+void flag_mid_edge_nodes(const QuadraticTetrahedra& T, std::vector<bool>& flags)
+{
+  std::vector<bool> corners = flags;
+  for (Eigen::Index e = 0; e < T.rows(); ++e)
+    for (int k = 0; k < 6; ++k) {
+      const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
+      if (corners[static_cast<std::size_t>(T(e, i))] && corners[static_cast<std::size_t>(T(e, j))])
+        flags[static_cast<std::size_t>(T(e, 4 + k))] = true;
+    }
 }
 
 QuadraticTetMesh promote_to_quadratic(const TetMesh& linear)

@@ -34,7 +34,8 @@ struct SceneBone {
 struct Scene {
   std::filesystem::path file; ///< the scene file ("" when parsed from text)
   std::string mesh_source;    ///< "file <path>" or the generator and its parameters
-  TetMesh mesh;
+  TetMesh mesh;               ///< the tets, or the corners of 10-node ones
+  QuadraticTetrahedra tet10;  ///< the 10-node tets of a model.vtu of them, over mesh.V
   MaterialParameters material;
   FiberField fibers; ///< empty without fibers
   std::map<std::string, std::vector<int>> node_sets;

@@ -20,6 +20,7 @@ constexpr double pi = 3.14159265358979323846;
 
 struct MeshData {
   TetMesh mesh;
+  QuadraticTetrahedra tet10;
   std::string source;
   std::map<std::string, Eigen::MatrixXd> point_data;
   std::map<std::string, Eigen::MatrixXd> cell_data;
@@ -34,6 +35,7 @@ MeshData read_mesh(TomlTable& table, const fs::path& base)
     const fs::path file = base / table.required_text("file");
     VtuMesh vtu = read_vtu_mesh(file);
     data.mesh = std::move(vtu.mesh);
+    data.tet10 = std::move(vtu.tet10);
     data.point_data = std::move(vtu.point_data);
     data.cell_data = std::move(vtu.cell_data);
     data.source = "file " + file.string();
@@ -343,6 +345,7 @@ Scene parse_scene(const std::string& text, const fs::path& base, const std::stri
     fail("{}: missing [mesh]", name);
   const MeshData mesh = read_mesh(*mesh_table, base);
   scene.mesh = mesh.mesh;
+  scene.tet10 = mesh.tet10;
   scene.mesh_source = mesh.source;
 
   if (auto material = root.table("material"))

@@ -13,9 +13,8 @@
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <Eigen/LU>
-
 #include <cmath>
+#include <vector>
 
 namespace ligsim::sim {
 
@@ -41,7 +40,7 @@ deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std:
     fail<SolverError>("{}: the positions are not finite; nothing written", label);
   const TetMesh& mesh = body.mesh();
   const vtkIdType node_count = mesh.V.rows();
-  const vtkIdType element_count = mesh.T.rows();
+  const vtkIdType element_count = body.element_count();
 
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   auto points = vtkSmartPointer<vtkPoints>::New();
@@ -56,13 +55,18 @@ deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std:
   grid->SetPoints(points);
   grid->GetPointData()->AddArray(displacement);
 
+  // Linear tets, or 10-node ones in VTK_QUADRATIC_TETRA's order (the body's).
+  const ElementNodes& elements = body.elements();
+  const int nodes = body.nodes_per_element();
   auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->AllocateExact(element_count, 4 * element_count);
+  cells->AllocateExact(element_count, nodes * element_count);
+  std::vector<vtkIdType> ids(static_cast<std::size_t>(nodes));
   for (vtkIdType e = 0; e < element_count; ++e) {
-    const vtkIdType ids[4] = {mesh.T(e, 0), mesh.T(e, 1), mesh.T(e, 2), mesh.T(e, 3)};
-    cells->InsertNextCell(4, ids);
+    for (int k = 0; k < nodes; ++k)
+      ids[static_cast<std::size_t>(k)] = elements(e, k);
+    cells->InsertNextCell(nodes, ids.data());
   }
-  grid->SetCells(VTK_TETRA, cells);
+  grid->SetCells(body.quadratic() ? VTK_QUADRATIC_TETRA : VTK_TETRA, cells);
 
   auto energy = make_array("strain_energy_density", 1, element_count);
   auto jacobian = make_array("J", 1, element_count);
@@ -83,9 +87,7 @@ deformed_grid(const HyperelasticBody& body, const Eigen::VectorXd& x, const std:
     jacobian->SetValue(e, measures.J);
     if (fibers) {
       stretch->SetValue(e, measures.fiber_stretch);
-      const TetCorners Q = tet_corners(mesh.T, e, x);
-      const Eigen::Vector3d deformed = (Q.transpose() * body.shape(e).D) * body.fiber(e);
-      const Eigen::Vector3d unit = deformed.normalized();
+      const Eigen::Vector3d unit = measures.deformed_fiber.normalized();
       for (int a = 0; a < 3; ++a)
         direction->SetComponent(e, a, unit(a));
     }

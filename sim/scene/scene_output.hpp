@@ -1,7 +1,8 @@
 #pragma once
-/// @brief Per-step outputs of a scene: a VTU of the deformed mesh (point data: displacement;
-/// cell data: "strain_energy_density" (MPa), "J", and with fibers "fiber_stretch" (|F a|) and
-/// "fiber_direction" (unit, deformed)) and the .pvd series.
+/// @brief Per-step outputs of a scene: a VTU of the deformed mesh (VTK_TETRA or
+/// VTK_QUADRATIC_TETRA cells; point data: displacement; cell data, a quadratic tet's the
+/// volume-weighted mean over its points: "strain_energy_density" (MPa), "J", and with fibers
+/// "fiber_stretch" (|F a|) and "fiber_direction" (unit, deformed)) and the .pvd series.
 
 #include "sim/solver/hyperelastic_body.hpp"
 

@@ -2,10 +2,10 @@
 
 #include "common/error.hpp"
 #include "common/vtk_files.hpp"
+#include "stages/io/vtk_convert.hpp"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
-#include <vtkIdList.h>
 #include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -39,21 +39,10 @@ VtuMesh read_vtu_mesh(const std::filesystem::path& file)
   const vtkIdType cells = grid->GetNumberOfCells();
   if (points == 0 || cells == 0)
     fail("{}: the mesh has no points or no cells", file.string());
-  result.mesh.V.resize(points, 3);
-  for (vtkIdType p = 0; p < points; ++p) {
-    double xyz[3];
-    grid->GetPoint(p, xyz);
-    result.mesh.V.row(p) << xyz[0], xyz[1], xyz[2];
-  }
-  result.mesh.T.resize(cells, 4);
-  auto ids = vtkSmartPointer<vtkIdList>::New();
-  for (vtkIdType c = 0; c < cells; ++c) {
-    if (grid->GetCellType(c) != VTK_TETRA)
-      fail("{}: cell {} is not a linear tetrahedron (VTK cell type {})", file.string(), c,
-           grid->GetCellType(c));
-    grid->GetCellPoints(c, ids);
-    for (int i = 0; i < 4; ++i)
-      result.mesh.T(c, i) = static_cast<int>(ids->GetId(i));
+  try {
+    result.mesh = io::from_unstructured_grid(grid, &result.tet10);
+  } catch (const InputError& error) {
+    fail("{}: {}", file.string(), error.what());
   }
   result.point_data = arrays_of(grid->GetPointData());
   result.cell_data = arrays_of(grid->GetCellData());

@@ -239,6 +239,7 @@ ElementMeasures HyperelasticBody::measures(const Eigen::VectorXd& x, Eigen::Inde
     mean.energy_density_mpa += w * point.energy_density_mpa;
     mean.fiber_stretch += w * point.fiber_stretch;
     mean.deviatoric_fiber_stretch += w * point.deviatoric_fiber_stretch;
+    mean.deformed_fiber += w * point.deformed_fiber;
   });
   return mean;
 }

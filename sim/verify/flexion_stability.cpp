@@ -76,12 +76,13 @@ CaseDefinition interactive_case(double time_step_s, std::vector<double> angles)
 /// least aligned with, crossed with it).
 std::string turn_fibers(KneeModel& model)
 {
-  for (Eigen::Index e = 0; e < model.fiber_directions.rows(); ++e) {
-    const Eigen::Vector3d a = model.fiber_directions.row(e);
-    Eigen::Index least = 0;
-    a.cwiseAbs().minCoeff(&least);
-    model.fiber_directions.row(e) = a.cross(Eigen::Vector3d::Unit(least)).normalized();
-  }
+  for (Eigen::MatrixX3d* fibers : {&model.fiber_directions, &model.fiber_directions_at_points})
+    for (Eigen::Index e = 0; e < fibers->rows(); ++e) {
+      const Eigen::Vector3d a = fibers->row(e);
+      Eigen::Index least = 0;
+      a.cwiseAbs().minCoeff(&least);
+      fibers->row(e) = a.cross(Eigen::Vector3d::Unit(least)).normalized();
+    }
   return fmt::format("{} fibers turned 90 degrees", model.fiber_directions.rows());
 }
 
@@ -90,6 +91,8 @@ std::string reverse_fibers(KneeModel& model)
 {
   for (Eigen::Index e = 0; e < model.fiber_directions.rows(); e += 2)
     model.fiber_directions.row(e) *= -1.0;
+  for (Eigen::Index p = 0; p < model.fiber_directions_at_points.rows(); p += 2)
+    model.fiber_directions_at_points.row(p) *= -1.0;
   return fmt::format("{} fibers reversed (every other element)",
                      (model.fiber_directions.rows() + 1) / 2);
 }

@@ -104,18 +104,46 @@ vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh)
   return grid;
 }
 
-TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid)
+vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const QuadraticTetMesh& mesh)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(to_vtk_points(mesh.V));
+  grid->Allocate(mesh.T.rows());
+  for (Eigen::Index t = 0; t < mesh.T.rows(); ++t) {
+    vtkIdType ids[10];
+    for (int k = 0; k < 10; ++k)
+      ids[k] = mesh.T(t, k);
+    grid->InsertNextCell(VTK_QUADRATIC_TETRA, 10, ids);
+  }
+  return grid;
+}
+
+TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid, QuadraticTetrahedra* tet10)
 {
   TetMesh mesh;
   mesh.V = from_vtk_points(grid->GetPoints());
-  mesh.T.resize(grid->GetNumberOfCells(), 4);
+  const vtkIdType cells = grid->GetNumberOfCells();
+  mesh.T.resize(cells, 4);
+  const bool quadratic = cells > 0 && grid->GetCellType(0) == VTK_QUADRATIC_TETRA;
+  if (quadratic && !tet10)
+    fail("the mesh has 10-node (quadratic) tetrahedra where linear ones are expected");
+  if (quadratic)
+    tet10->resize(cells, 10);
+  const int expected = quadratic ? VTK_QUADRATIC_TETRA : VTK_TETRA;
   auto ids = vtkSmartPointer<vtkIdList>::New();
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
-    if (grid->GetCellType(c) != VTK_TETRA)
-      fail("cell {} is not a linear tetrahedron (VTK type {})", c, grid->GetCellType(c));
+  for (vtkIdType c = 0; c < cells; ++c) {
+    if (grid->GetCellType(c) != expected)
+      fail("cell {} is not a {} tetrahedron like cell 0 (VTK type {}): a mesh is of linear "
+           "(VTK_TETRA) or of quadratic (VTK_QUADRATIC_TETRA) tets",
+           c, quadratic ? "quadratic" : "linear", grid->GetCellType(c));
     grid->GetCellPoints(c, ids);
-    for (int k = 0; k < 4; ++k)
-      mesh.T(c, k) = static_cast<int>(ids->GetId(k));
+    for (int k = 0; k < (quadratic ? 10 : 4); ++k) {
+      const auto id = static_cast<int>(ids->GetId(k));
+      if (k < 4)
+        mesh.T(c, k) = id;
+      if (quadratic)
+        (*tet10)(c, k) = id;
+    }
   }
   return mesh;
 }

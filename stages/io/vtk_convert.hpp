@@ -25,8 +25,11 @@ vtkSmartPointer<vtkPolyData> polyline_to_polydata(const Points& points);
 Points points_of(vtkPolyData* polydata);
 
 vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const TetMesh& mesh);
-/// Tetrahedra only; throws InputError if another cell type is present.
-TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid);
+vtkSmartPointer<vtkUnstructuredGrid> to_unstructured_grid(const QuadraticTetMesh& mesh);
+/// Linear tetrahedra; or, given `tet10`, 10-node ones too: then the result's T holds their
+/// corners and `tet10` all their nodes (left empty for linear ones). Throws InputError if another
+/// cell type is present, the two kinds are mixed, or quadratic ones come without `tet10`.
+TetMesh from_unstructured_grid(vtkUnstructuredGrid* grid, QuadraticTetrahedra* tet10 = nullptr);
 
 /// Adds a #rows x columns double array (vectors, scalars) to point or cell data.
 void add_array(vtkDataSetAttributes* attributes, const std::string& name,

@@ -26,6 +26,8 @@ void check_parameters(const Parameters& p)
       fail("tetmesh: {} must be finite, got {}", name, value);
   if (p.seed < 0)
     fail("tetmesh: seed must be non-negative, got {}", p.seed);
+  if (p.order != 1 && p.order != 2)
+    fail("tetmesh: order must be 1 (linear tets) or 2 (10-node tets), got {}", p.order);
 }
 
 /// Indices and coordinates first (the topology check reads them), then closed and manifold.

@@ -25,6 +25,9 @@ struct Parameters {
   bool exude_slivers = true;    ///< CGAL::exude_mesh_3 (sliver exudation by vertex weights)
   bool perturb = true;          ///< CGAL::perturb_mesh_3 (raises the min dihedral angle)
   int seed = 0;                 ///< seed of CGAL's random generator: same seed, same mesh
+  /// 1: linear tets; 2: 10-node tets, their boundary mid-edge nodes on the surface (the build's
+  /// tetmesh stage adds them, sim/mesh/curved_boundary.hpp; make_tet_mesh meshes the corners).
+  int order = 1;
 };
 
 struct Quality {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -87,6 +88,23 @@ inline nlohmann::json read_json(const std::filesystem::path& file)
 {
   std::ifstream in(file);
   return nlohmann::json::parse(in);
+}
+
+/// "--axis" through the point and along the direction the model stage of the model folder
+/// `model` chose (its summary.json), to 17 digits.
+inline std::string flexion_axis_argument(const std::filesystem::path& model)
+{
+  const nlohmann::json axis =
+      read_json(model / "summary.json")["stages"]["model"]["figures"]["flexion_axis"];
+  std::ostringstream text;
+  text.precision(17);
+  text << "--axis ";
+  for (int i = 0; i < 3; ++i)
+    text << axis["point_mm"][i].get<double>() << ",";
+  for (int i = 0; i < 3; ++i)
+    text << axis["point_mm"][i].get<double>() + axis["direction"][i].get<double>()
+         << (i < 2 ? "," : "");
+  return text.str();
 }
 
 /// A one-ligament model's results in a job's summary.json results (`results.ligaments`'s only

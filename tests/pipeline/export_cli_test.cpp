@@ -50,30 +50,14 @@ const fs::path& band_model()
   return model;
 }
 
-/// "--axis" through the point and along the direction the model stage chose for the band.
-std::string band_axis()
-{
-  std::ifstream in(band_model() / "summary.json");
-  const nlohmann::json axis =
-      nlohmann::json::parse(in)["stages"]["model"]["figures"]["flexion_axis"];
-  std::ostringstream out;
-  out.precision(17);
-  out << "--axis ";
-  for (int i = 0; i < 3; ++i)
-    out << axis["point_mm"][i].get<double>() << ",";
-  for (int i = 0; i < 3; ++i)
-    out << axis["point_mm"][i].get<double>() + axis["direction"][i].get<double>()
-        << (i < 2 ? "," : "");
-  return out.str();
-}
-
 } // namespace
 
 TEST(ExportCli, FebioFileHoldsTheModel)
 {
   const fs::path out = fresh_folder("export_feb") / "band.feb";
-  const CliResult result = run_ligsim("export febio --model " + band_model().string() + " " +
-                                      band_axis() + " --angles 0,45 --out " + out.string());
+  const CliResult result =
+      run_ligsim("export febio --model " + band_model().string() + " " +
+                 flexion_axis_argument(band_model()) + " --angles 0,45 --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   // The shipped defaults use the paper's convention: the user is told FEBio's differs.
   EXPECT_NE(result.stderr_text.find("warning: the model's fiber convention is 'paper'"),
@@ -100,8 +84,9 @@ TEST(ExportCli, TheModelsOwnMaterialIsExportedAsTheFlexionUsesIt)
   scene.replace(mu, scene.find('\n', mu) - mu, "mu_mpa = 5");
   std::ofstream(model / "scene.toml") << scene;
   const fs::path out = fresh_folder("export_own_material_feb") / "band.feb";
-  const std::string command = "export febio --model " + model.string() + " " + band_axis() +
-                              " --angles 0,45 --out " + out.string();
+  const std::string command = "export febio --model " + model.string() + " " +
+                              flexion_axis_argument(band_model()) + " --angles 0,45 --out " +
+                              out.string();
   const CliResult result = run_ligsim(command);
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   EXPECT_NE(text(out).find("<c1>2.5</c1>"), std::string::npos);
@@ -115,8 +100,8 @@ TEST(ExportCli, TheModelsOwnMaterialIsExportedAsTheFlexionUsesIt)
 TEST(ExportCli, FebioPenaltyIsWrittenAndMustBePositive)
 {
   const fs::path out = fresh_folder("export_penalty") / "band.feb";
-  const std::string command =
-      "export febio --model " + band_model().string() + " " + band_axis() + " --angles 0,45 ";
+  const std::string command = "export febio --model " + band_model().string() + " " +
+                              flexion_axis_argument(band_model()) + " --angles 0,45 ";
   const CliResult result = run_ligsim(command + "--febio-penalty 3.5 --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   const std::string feb = text(out);
@@ -135,9 +120,9 @@ TEST(ExportCli, AFreeKneesPathIsExportedAsItsTableNotFoundAgain)
   const fs::path config = fresh_folder("export_free.toml");
   std::ofstream(config) << "[motion]\npath = \"free\"\n";
   const fs::path out = fresh_folder("export_free") / "band.feb";
-  const CliResult refused =
-      run_ligsim("export febio --model " + band_model().string() + " " + band_axis() +
-                 " --config " + config.string() + " --out " + out.string());
+  const CliResult refused = run_ligsim("export febio --model " + band_model().string() + " " +
+                                       flexion_axis_argument(band_model()) + " --config " +
+                                       config.string() + " --out " + out.string());
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.stderr_text.find("kinematics.csv"), std::string::npos) << refused.stderr_text;
   EXPECT_FALSE(fs::exists(out));
@@ -146,8 +131,9 @@ TEST(ExportCli, AFreeKneesPathIsExportedAsItsTableNotFoundAgain)
 TEST(ExportCli, RejectsAnOutputThatIsNotAFebFile)
 {
   const fs::path out = fresh_folder("export_bad") / "band.txt";
-  const CliResult result = run_ligsim("export febio --model " + band_model().string() + " " +
-                                      band_axis() + " --out " + out.string());
+  const CliResult result =
+      run_ligsim("export febio --model " + band_model().string() + " " +
+                 flexion_axis_argument(band_model()) + " --out " + out.string());
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.stderr_text.find("ending in .feb"), std::string::npos) << result.stderr_text;
   EXPECT_FALSE(fs::exists(out));
@@ -159,9 +145,9 @@ TEST(ExportCli, VerifyFebioWritesTheComparison)
     GTEST_SKIP() << "FEBio not given: configure with -DLIGSIM_FEBIO=/path/to/febio4 or set "
                     "LIGSIM_FEBIO to run `ligsim verify febio`";
   const fs::path out = fresh_folder("verify_febio");
-  const CliResult result =
-      run_ligsim("verify febio --model " + band_model().string() + " " + band_axis() +
-                 " --angles 0,45 --contact off --febio " + febio() + " --out " + out.string());
+  const CliResult result = run_ligsim(
+      "verify febio --model " + band_model().string() + " " + flexion_axis_argument(band_model()) +
+      " --angles 0,45 --contact off --febio " + febio() + " --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   for (const char* file :
        {"knee.feb", "knee.log", "febio_comparison.csv", "febio_comparison.md", "summary.json"})

@@ -42,21 +42,6 @@ const fs::path& band_model()
   return model;
 }
 
-/// "--axis" through the point and along the direction the model stage chose for the band.
-std::string band_axis()
-{
-  const nlohmann::json axis =
-      read_json(band_model() / "summary.json")["stages"]["model"]["figures"]["flexion_axis"];
-  std::ostringstream text;
-  text << "--axis ";
-  for (int i = 0; i < 3; ++i)
-    text << axis["point_mm"][i].get<double>() << ",";
-  for (int i = 0; i < 3; ++i)
-    text << axis["point_mm"][i].get<double>() + axis["direction"][i].get<double>()
-         << (i < 2 ? "," : "");
-  return text.str();
-}
-
 /// Runs flexion on the band expecting failure: one error line naming `expected`, and no output
 /// folder.
 void expect_rejected(const std::string& arguments, const std::string& expected)
@@ -75,8 +60,9 @@ void expect_rejected(const std::string& arguments, const std::string& expected)
 TEST(FlexionCli, BandSweepWritesEveryOutput)
 {
   const fs::path out = fresh_folder("flexion_band");
-  const CliResult result = run_ligsim("flexion --model " + band_model().string() + " " +
-                                      band_axis() + " --out " + out.string());
+  const CliResult result =
+      run_ligsim("flexion --model " + band_model().string() + " " +
+                 flexion_axis_argument(band_model()) + " --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   // The closing lines say where the table and the pictures are.
   EXPECT_NE(result.stderr_text.find("flexion.csv"), std::string::npos);
@@ -114,7 +100,8 @@ TEST(FlexionCli, ContactKeepsTheBandOutOfTheFemurWhereItWouldCrossIt)
 {
   // Without contact the synthetic band enters the femur by about 5 mm at 120 degrees (measured
   // against the femur's triangles); with contact (the default) it wraps it and stays out.
-  const std::string sweep = "flexion --model " + band_model().string() + " " + band_axis() +
+  const std::string sweep = "flexion --model " + band_model().string() + " " +
+                            flexion_axis_argument(band_model()) +
                             " --angles 0,30,60,90,95,100,105,110,115,120 --no-images --out ";
   const fs::path off = fresh_folder("flexion_band_contact_off");
   ASSERT_EQ(run_ligsim(sweep + off.string() + " --contact off").exit_code, 0);
@@ -145,7 +132,7 @@ TEST(FlexionCli, InteractiveModeReportsFramesPerSecond)
 {
   const fs::path out = fresh_folder("flexion_band_interactive");
   const CliResult result = run_ligsim(
-      "flexion --model " + band_model().string() + " " + band_axis() +
+      "flexion --model " + band_model().string() + " " + flexion_axis_argument(band_model()) +
       " --mode interactive --angles 0,45,90 --speed 90 --no-images --out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   const nlohmann::json summary = read_json(out / "summary.json");
@@ -158,20 +145,24 @@ TEST(FlexionCli, InteractiveModeReportsFramesPerSecond)
 TEST(FlexionCli, BadInputsAreRejectedBeforeAnythingIsWritten)
 {
   const std::string model = "--model " + band_model().string();
-  expect_rejected("--model /nonexistent/model " + band_axis(), "does not exist");
+  expect_rejected("--model /nonexistent/model " + flexion_axis_argument(band_model()),
+                  "does not exist");
   expect_rejected(model + " --axis 1,2,3,1,2,3", "zero length");
-  expect_rejected(model + " " + band_axis() + " --angles 0,45,30", "increase");
+  expect_rejected(model + " " + flexion_axis_argument(band_model()) + " --angles 0,45,30",
+                  "increase");
   expect_rejected(model, "posterior direction"); // no axis and nothing to fit it with
 
   const fs::path config = fresh_folder("flexion_empty_angles.toml");
   std::ofstream(config) << "angles_deg = []\n";
-  expect_rejected(model + " " + band_axis() + " --config " + config.string(), "empty");
+  expect_rejected(
+      model + " " + flexion_axis_argument(band_model()) + " --config " + config.string(), "empty");
 
   // A model folder whose bone is missing.
   const fs::path boneless = fresh_folder("flexion_boneless_model");
   fs::copy(band_model(), boneless, fs::copy_options::recursive);
   fs::remove(boneless / "tibia.vtp");
-  expect_rejected("--model " + boneless.string() + " " + band_axis(), "tibia.vtp");
+  expect_rejected("--model " + boneless.string() + " " + flexion_axis_argument(band_model()),
+                  "tibia.vtp");
 }
 
 TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsThem)
@@ -191,7 +182,8 @@ TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsTh
   ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
   const auto sweep = [&](const std::string& flexion_config) {
     const fs::path out = fresh_folder("flexion_material");
-    std::string arguments = "flexion --model " + model.string() + " " + band_axis() +
+    std::string arguments = "flexion --model " + model.string() + " " +
+                            flexion_axis_argument(band_model()) +
                             " --angles 0,15 --no-images --out " + out.string();
     if (!flexion_config.empty()) {
       const fs::path file = fresh_folder("flexion_material.toml");

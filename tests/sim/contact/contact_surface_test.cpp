@@ -7,6 +7,7 @@
 
 #include <set>
 
+using namespace ligsim;
 using namespace ligsim::sim;
 
 namespace {

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+using namespace ligsim;
 using namespace ligsim::sim;
 
 namespace {

@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+using namespace ligsim;
 using namespace ligsim::sim;
 using ligsim::TetMesh;
 

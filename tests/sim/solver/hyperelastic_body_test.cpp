@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+using namespace ligsim;
 using namespace ligsim::sim;
 
 namespace {
