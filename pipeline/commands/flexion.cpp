@@ -229,7 +229,12 @@ void run_flexion(const FlexionJobOptions& options)
     summary.inputs()["config"] = options.flexion.config.string();
   const std::vector<sim::LigamentModel> whole =
       sim::load_knee(settings.model_dir, settings.ligament.name);
-  const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
+  std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
+  const std::string element_note = settings.mode == sim::FlexionMode::interactive
+                                       ? sim::linear_tets_for_frames(ligaments)
+                                       : std::string();
+  if (!element_note.empty())
+    log_info(element_note);
   const bool knee = ligaments.front().manifest.has_value();
   std::vector<std::string> names;
   for (const sim::LigamentModel& ligament : ligaments)
@@ -255,6 +260,8 @@ void run_flexion(const FlexionJobOptions& options)
   }
   record_parameters(settings, motion, summary);
   summary.parameters()["ligaments"] = names;
+  if (!element_note.empty())
+    summary.parameters()["elements"] = element_note;
   log_motion(motion);
   const sim::RigidMotion femur_motion = sim::femur_rigid_motion(motion);
   for (const sim::LigamentModel& ligament : ligaments)

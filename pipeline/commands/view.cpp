@@ -61,7 +61,10 @@ void run_view(const ViewOptions& options)
       options.max_angle_deg > 0.0 ? options.max_angle_deg : settings.angles_deg.back();
   const std::vector<sim::LigamentModel> whole =
       sim::load_knee(settings.model_dir, settings.ligament.name);
-  const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
+  std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);
+  const std::string element_note = sim::linear_tets_for_frames(ligaments);
+  if (!element_note.empty())
+    log_info(element_note);
   const bool free_path = sim::choose_free_path(settings, whole);
   settings.angles_deg = {0.0, max_angle};
   sim::KneeMotion motion = sim::resolve_knee_motion(ligaments.front().model, settings);

@@ -188,7 +188,9 @@ std::vector<FlexionFigures> run_flexion(const sim::FlexionSettings& settings)
       }))
     for (const char* key : {"ligament.name", "ligament.failure_strain", "ligament.failure_load_n"})
       own.given.erase(key);
-  const std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(std::move(all), own);
+  std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(std::move(all), own);
+  if (own.mode == sim::FlexionMode::interactive)
+    sim::linear_tets_for_frames(ligaments);
   // The ligaments share the bones and the anatomy: the motion comes from any of them.
   const sim::KneeMotion motion = sim::resolve_knee_motion(ligaments.front().model, own);
   const double shared_setup_s = meter.wall_s();

@@ -161,6 +161,39 @@ KneeModel with_quadratic_tets(const KneeModel& model)
   return quadratic;
 }
 
+KneeModel with_linear_tets(const KneeModel& model)
+{
+  if (model.tet10.rows() == 0)
+    return model;
+  KneeModel linear = model;
+  // The corners, numbered in node order: a build's model (corners first) keeps their indices.
+  std::vector<int> index(static_cast<std::size_t>(model.mesh.V.rows()), -1);
+  for (Eigen::Index e = 0; e < model.mesh.T.rows(); ++e)
+    for (int k = 0; k < 4; ++k)
+      index[static_cast<std::size_t>(model.mesh.T(e, k))] = 0;
+  int corners = 0;
+  for (int& i : index)
+    if (i >= 0)
+      i = corners++;
+  linear.mesh.V.resize(corners, 3);
+  for (std::size_t n = 0; n < index.size(); ++n)
+    if (index[n] >= 0)
+      linear.mesh.V.row(index[n]) = model.mesh.V.row(static_cast<Eigen::Index>(n));
+  for (Eigen::Index e = 0; e < model.mesh.T.rows(); ++e)
+    for (int k = 0; k < 4; ++k)
+      linear.mesh.T(e, k) = index[static_cast<std::size_t>(model.mesh.T(e, k))];
+  for (std::vector<int>* nodes : {&linear.femur_nodes, &linear.tibia_nodes}) {
+    std::vector<int> kept;
+    for (int n : *nodes)
+      if (index[static_cast<std::size_t>(n)] >= 0)
+        kept.push_back(index[static_cast<std::size_t>(n)]);
+    *nodes = std::move(kept);
+  }
+  linear.tet10.resize(0, 10);
+  linear.fiber_directions_at_points.resize(0, 3);
+  return linear;
+}
+
 HyperelasticBody ligament_body(const KneeModel& model, const MaterialParameters& material,
                                double in_situ_strain)
 {

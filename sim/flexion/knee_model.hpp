@@ -48,6 +48,11 @@ struct KneeModel {
 /// nodes), bound to a bone where both ends of its edge are.
 KneeModel with_quadratic_tets(const KneeModel& model);
 
+/// The model of 10-node tets as linear tets on their corners (the mid-edge nodes dropped, the
+/// corners renumbered in order, the tets' own fibers); a model of linear tets as it is. The
+/// interactive sweep runs these: implicit Euler needs a positive lumped mass.
+KneeModel with_linear_tets(const KneeModel& model);
+
 /// The model's ligament as a body of `material`: its linear tets, or its 10-node tets with the
 /// 4-point rule (kQuadraticTetRuleDegree, FEBio's TET10G4); its fibers (at the points where the
 /// model has them) with the in-situ pre-stretch (unit direction times 1 + in_situ_strain).

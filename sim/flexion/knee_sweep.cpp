@@ -83,6 +83,22 @@ void use_folder_material(FlexionSettings& settings)
   settings.in_situ_strain = own.in_situ_strain;
 }
 
+std::string linear_tets_for_frames(std::vector<LigamentModel>& ligaments)
+{
+  std::string names;
+  for (LigamentModel& ligament : ligaments)
+    if (ligament.model.tet10.rows() > 0) {
+      ligament.model = with_linear_tets(ligament.model);
+      names += (names.empty() ? "" : ", ") + ligament.name;
+    }
+  if (names.empty())
+    return "";
+  return fmt::format("implicit Euler frames: {} of 10-node tets run as linear tets on their "
+                     "corners (no positive lumped mass for 10-node tets; the quasi-static sweep "
+                     "runs them as built)",
+                     names);
+}
+
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
                                             const FlexionSettings& settings)
 {

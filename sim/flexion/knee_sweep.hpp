@@ -34,6 +34,12 @@ void use_folder_material(FlexionSettings& settings);
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
                                             const FlexionSettings& settings);
 
+/// For implicit Euler frames (the interactive sweep, the live view): the ligaments of 10-node
+/// tets become linear tets on their corners (with_linear_tets: implicit Euler needs a positive
+/// lumped mass, and the frame rate the smaller system). Returns a line for the log and the
+/// summary, empty when nothing changed.
+std::string linear_tets_for_frames(std::vector<LigamentModel>& ligaments);
+
 /// What one ligament's sweep was set up with.
 struct LigamentSetup {
   int nodes = 0;

@@ -123,6 +123,17 @@ TEST(QuadraticBuild, TheBandOfTenNodeTetsIsCurvedCarriesFibersAtItsPointsAndPull
   EXPECT_TRUE(read_json(simulated / "summary.json")["results"]["success"].get<bool>());
   EXPECT_EQ(read_vtu(simulated / "step_0001.vtu")->GetCellType(0), VTK_QUADRATIC_TETRA);
 
+  // The interactive sweep runs the corners as linear tets, and says so.
+  const fs::path frames = fresh_folder("quadratic_band_frames");
+  const CliResult interactive =
+      run_ligsim("flexion --model " + quadratic.string() + " " + flexion_axis_argument(linear) +
+                 " --mode interactive --angles 0 5 --no-images --out " + frames.string());
+  ASSERT_EQ(interactive.exit_code, 0) << interactive.stderr_text;
+  EXPECT_NE(read_json(frames / "summary.json")["parameters"]["elements"].get<std::string>().find(
+                "linear tets on their corners"),
+            std::string::npos);
+  EXPECT_EQ(read_vtu(frames / "ligament_5.vtu")->GetCellType(0), VTK_TETRA);
+
   // The band flexes clear of the bones, stretched along its fibers: the two orders on the same
   // corners make the same ligament (the curved surface, the fibers at the points and the
   // mid-edge footprints), the quadratic one no stiffer and at most 10 % softer. Measured: linear

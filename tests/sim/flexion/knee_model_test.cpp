@@ -16,6 +16,7 @@
 
 #include <filesystem>
 
+using namespace ligsim;
 using namespace ligsim::sim;
 namespace fs = std::filesystem;
 
@@ -170,4 +171,42 @@ TEST(KneeModel, WithQuadraticTetsBindsTheMidEdgeNodesOfBoundEdges)
   EXPECT_NEAR(body.fiber(3).norm(), 1.029, 1e-15);
   EXPECT_FALSE(ligament_body(model, mcl_material(), 0.0).quadratic());
   EXPECT_EQ(with_quadratic_tets(quadratic).mesh.V.rows(), quadratic.mesh.V.rows());
+
+  // Back to linear tets on the corners (the implicit Euler frames): the model it came from.
+  KneeModel with_point_fibers = quadratic;
+  with_point_fibers.fiber_directions_at_points =
+      Eigen::MatrixX3d::Ones(4 * quadratic.tet10.rows(), 3);
+  const KneeModel linear = with_linear_tets(with_point_fibers);
+  EXPECT_EQ(linear.tet10.rows(), 0);
+  EXPECT_EQ(linear.fiber_directions_at_points.rows(), 0);
+  EXPECT_EQ(linear.mesh.V, model.mesh.V);
+  EXPECT_EQ(linear.mesh.T, model.mesh.T);
+  EXPECT_EQ(linear.fiber_directions, model.fiber_directions);
+  EXPECT_EQ(linear.femur_nodes, model.femur_nodes);
+  EXPECT_EQ(linear.tibia_nodes, model.tibia_nodes);
+}
+
+TEST(KneeModel, WithLinearTetsRenumbersCornersThatAreNotFirst)
+{
+  // A 10-node tet whose corners come after its mid-edge nodes in the file.
+  KneeModel model;
+  model.mesh.V.resize(10, 3);
+  const Eigen::Matrix<double, 4, 3> corners =
+      (Eigen::Matrix<double, 4, 3>() << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1).finished();
+  for (int c = 0; c < 4; ++c)
+    model.mesh.V.row(6 + c) = corners.row(c);
+  for (int k = 0; k < 6; ++k)
+    model.mesh.V.row(k) = 0.5 * (corners.row(kQuadraticTetEdges[static_cast<std::size_t>(k)][0]) +
+                                 corners.row(kQuadraticTetEdges[static_cast<std::size_t>(k)][1]));
+  model.tet10.resize(1, 10);
+  model.tet10 << 6, 7, 8, 9, 0, 1, 2, 3, 4, 5;
+  model.mesh.T = model.tet10.leftCols<4>();
+  model.fiber_directions = Eigen::RowVector3d::UnitX();
+  model.femur_nodes = {9, 3, 4, 5};
+  model.tibia_nodes = {6, 7, 0};
+  const KneeModel linear = with_linear_tets(model);
+  EXPECT_EQ(linear.mesh.V, corners);
+  EXPECT_EQ(linear.mesh.T, (Tetrahedra(1, 4) << 0, 1, 2, 3).finished());
+  EXPECT_EQ(linear.femur_nodes, std::vector<int>{3});
+  EXPECT_EQ(linear.tibia_nodes, (std::vector<int>{0, 1}));
 }
