@@ -97,9 +97,10 @@ private:
   std::optional<FiberLaw> m_fiber_law;
 };
 
-/// Replaces an element's stiffness `H` (3 N x 3 N, N = 4 or 10 nodes) by its projection onto
-/// the positive semi-definite cone (negative eigenvalues set to zero). Returns true if anything
-/// was negative.
+/// Replaces an element's stiffness `H` (3 N x 3 N, N = 4 or 10 nodes) by a positive
+/// semi-definite one: a linear tet's negative eigenvalues set to zero (the projection onto the
+/// cone), a 10-node tet's to their absolute values (weiss_material.cpp says why). Returns true
+/// if anything was negative.
 template <int Size> bool project_to_psd(Eigen::Matrix<double, Size, Size>& H);
 
 } // namespace ligsim::sim

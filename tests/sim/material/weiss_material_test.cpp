@@ -4,8 +4,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -252,4 +254,21 @@ TEST(PsdProjection, ClampsNegativeEigenvaluesOnly)
   EXPECT_NEAR(H(5, 5), 1.0, 1e-14);
   Matrix12d positive = Matrix12d::Identity();
   EXPECT_FALSE(project_to_psd(positive));
+}
+
+TEST(PsdProjection, MirrorsATenNodeTetsNegativeEigenvalues)
+{
+  // A rotated diagonal: eigenvalues -2 and -0.5 become 2 and 0.5, the rest stay.
+  using Matrix30d = Eigen::Matrix<double, 30, 30>;
+  Eigen::Matrix<double, 30, 1> values = Eigen::Matrix<double, 30, 1>::LinSpaced(30, 1.0, 30.0);
+  values(3) = -2.0;
+  values(17) = -0.5;
+  const Matrix30d Q = Eigen::HouseholderQR<Matrix30d>(Matrix30d::Random()).householderQ();
+  Matrix30d H = Q * values.asDiagonal() * Q.transpose();
+  EXPECT_TRUE(project_to_psd(H));
+  Eigen::Matrix<double, 30, 1> expected = values.cwiseAbs();
+  std::sort(expected.data(), expected.data() + 30);
+  const Eigen::Matrix<double, 30, 1> got =
+      Eigen::SelfAdjointEigenSolver<Matrix30d>(H).eigenvalues();
+  EXPECT_LT((got - expected).cwiseAbs().maxCoeff(), 1e-12);
 }
