@@ -156,12 +156,17 @@ void run_convergence(const ConvergenceOptions& o)
   check_ladder(inputs.ladder.voxel_scales, "--voxel-scales", true);
   check_ladder(inputs.ladder.time_steps_s, "--time-steps", true);
   check_ladder(inputs.ladder.interactive_mesh_scales, "--interactive-mesh-scales", true);
+  for (int order : inputs.ladder.orders)
+    if (order != 1 && order != 2)
+      fail("--orders: an element order is 1 (linear tets) or 2 (10-node tets), got {}", order);
   run_study_job(o.study, "convergence",
                 {{"mesh_scales", inputs.ladder.mesh_scales},
                  {"voxel_scales", inputs.ladder.voxel_scales},
                  {"voxel_mesh_scale", inputs.ladder.voxel_mesh_scale},
                  {"time_steps_s", inputs.ladder.time_steps_s},
-                 {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales}},
+                 {"interactive_mesh_scales", inputs.ladder.interactive_mesh_scales},
+                 {"orders", inputs.ladder.orders.empty() ? nlohmann::json("the config's")
+                                                         : nlohmann::json(inputs.ladder.orders)}},
                 inputs.flexion.angles_deg,
                 study::ligament_names(inputs.model, inputs.flexion.ligament.name),
                 [&] { return study::run_convergence_study(inputs); });
@@ -286,6 +291,12 @@ void add_study_command(CLI::App& app)
   convergence
       ->add_option("--interactive-mesh-scales", ladder.interactive_mesh_scales,
                    "the meshes the interactive runs use (factors as --mesh-scales)")
+      ->delimiter(',');
+  convergence
+      ->add_option("--orders", ladder.orders,
+                   "element orders of the mesh ladder, each a family: 1 (linear tets), 2 (10-node "
+                   "tets); the finest mesh of the highest is the reference (default: the "
+                   "config's)")
       ->delimiter(',');
   convergence->callback([convergence_options] { run_convergence(*convergence_options); });
 

@@ -28,11 +28,15 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// The paper's interactive rate (sec. 5.2: 15 frames per second for 5,911 tets).
 constexpr double kPaperFramesPerSecond = 15.0;
 
+/// The femur force error under which a run counts as converged (the 1 %).
+constexpr double kConvergedForceError = 0.01;
+
 struct RunSpec {
   std::string family;
   double mesh_scale = 1.0;
   double voxel_scale = 1.0;
   double time_step_s = 0.0; ///< 0: quasi-static
+  int order = 0;            ///< 0: the config's own
 };
 
 /// One ligament in one run of the ladders.
@@ -48,15 +52,31 @@ struct Run {
   std::vector<AngleErrors> errors;
 };
 
-std::string model_name(double mesh_scale, double voxel_scale)
+std::string model_name(double mesh_scale, double voxel_scale, int order)
 {
-  return fmt::format("mesh{:g}-voxel{:g}", mesh_scale, voxel_scale);
+  const std::string name = fmt::format("mesh{:g}-voxel{:g}", mesh_scale, voxel_scale);
+  return order > 0 ? fmt::format("{}-order{}", name, order) : name;
+}
+
+/// The mesh ladder's family of an element order.
+std::string mesh_family(int order)
+{
+  if (order == 1)
+    return "quasi-static, mesh, linear tets";
+  if (order == 2)
+    return "quasi-static, mesh, 10-node tets";
+  return "quasi-static, mesh";
+}
+
+bool is_mesh_family(const std::string& family)
+{
+  return family.rfind("quasi-static, mesh", 0) == 0;
 }
 
 /// The config's sizes times the scales; a size the config leaves at 0 starts from the build's
 /// default (mesh h/2, facet distance h/20, voxel h/8).
 pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double thickness_mm,
-                                    double mesh_scale, double voxel_scale)
+                                    double mesh_scale, double voxel_scale, int order)
 {
   auto scaled = [](double value, double fallback, double scale) {
     return scale * (value > 0.0 ? value : fallback);
@@ -67,17 +87,19 @@ pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double th
   config.tetmesh.facet_distance_mm =
       scaled(base.tetmesh.facet_distance_mm, thickness_mm / 20.0, mesh_scale);
   config.voxelize.spacing_mm = scaled(base.voxelize.spacing_mm, thickness_mm / 8.0, voxel_scale);
+  if (order > 0)
+    config.tetmesh.order = order;
   return config;
 }
 
 /// Every ligament's sizes scaled from its own (`thickness_mm` per ligament).
 StudyModel scaled_model(const StudyModel& base, const std::vector<double>& thickness_mm,
-                        double mesh_scale, double voxel_scale)
+                        const RunSpec& spec)
 {
   StudyModel model = base;
   for (std::size_t l = 0; l < model.config.ligaments.size(); ++l)
-    model.config.ligaments[l].build =
-        scaled_config(base.config.ligaments[l].build, thickness_mm[l], mesh_scale, voxel_scale);
+    model.config.ligaments[l].build = scaled_config(base.config.ligaments[l].build, thickness_mm[l],
+                                                    spec.mesh_scale, spec.voxel_scale, spec.order);
   return model;
 }
 
@@ -133,9 +155,34 @@ std::map<double, double> extrapolated_energy(const std::vector<const Run*>& mesh
   return energies;
 }
 
-/// The table rows of every ligament's runs, a ligament after the other.
+/// The quasi-static mesh run, other than the reference, whose femur force lies within 1 % of
+/// the reference's at every angle in the least solve time; null when none does.
+nlohmann::json fastest_converged(const std::vector<Run>& runs, const std::string& reference_family,
+                                 double finest_mesh)
+{
+  const Run* best = nullptr;
+  for (const Run& run : runs) {
+    const bool reference =
+        run.spec.family == reference_family && run.spec.mesh_scale == finest_mesh;
+    if (reference || !run.failure.empty() || !is_mesh_family(run.spec.family) ||
+        !(run.worst_vs_reference[3] <= kConvergedForceError))
+      continue;
+    if (!best || run.flexion.solve_s < best->flexion.solve_s)
+      best = &run;
+  }
+  if (!best)
+    return nullptr;
+  return {{"family", best->spec.family},
+          {"mesh_scale", best->spec.mesh_scale},
+          {"tets", best->flexion.tets},
+          {"solve_s", best->flexion.solve_s},
+          {"femur_force_error", best->worst_vs_reference[3]}};
+}
+
+/// The table rows of every ligament's runs, a ligament after the other, and each ligament's
+/// fastest run within 1 % (`ligaments`: the report's entries).
 void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out,
-                  const std::string& reference)
+                  const std::string& reference, const nlohmann::json& ligaments)
 {
   std::string csv = "ligament,family,mesh_scale,voxel_scale,mode,time_step_s,tets,build_s,"
                     "build_peak_mib,solve_s,solve_peak_mib,frames,s_per_frame,frames_per_second,"
@@ -196,6 +243,20 @@ void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out
           std::max(run.build.peak_rss_mib, run.flexion.peak_rss_mib), percent(r[0]), percent(r[1]),
           percent(r[2]), percent(r[3]), percent(run.energy_error_vs_extrapolated));
     }
+  md += fmt::format("\nWithin {:g} % of the reference's femur force at every angle, in the least "
+                    "solve time:\n\n",
+                    100.0 * kConvergedForceError);
+  for (const nlohmann::json& ligament : ligaments) {
+    const nlohmann::json& best = ligament["fastest_within_1pct_femur_force"];
+    md += fmt::format("- {}: {}\n", ligament["ligament"].get<std::string>(),
+                      best.is_null()
+                          ? std::string("none of the runs but the reference")
+                          : fmt::format("{}, mesh x{:g} ({} tets, {:.2f} s; {})",
+                                        best["family"].get<std::string>(),
+                                        best["mesh_scale"].get<double>(), best["tets"].get<int>(),
+                                        best["solve_s"].get<double>(),
+                                        percent(best["femur_force_error"].get<double>())));
+  }
   write_text_atomically(out / "convergence.csv", csv);
   write_text_atomically(out / "convergence_angles.csv", angles_csv);
   write_text_atomically(out / "convergence.md", md);
@@ -264,12 +325,12 @@ void write_convergence_plot(const std::vector<std::vector<Run>>& runs, const fs:
 /// extrapolation. `sweeps` holds every sweep by key, every ligament's figures.
 void compare_runs(std::vector<Run>& runs, const std::string& ligament,
                   const std::map<std::string, std::vector<FlexionFigures>>& sweeps,
-                  const FlexionFigures& reference, const std::string& finest_voxel_key,
-                  nlohmann::json& report)
+                  const FlexionFigures& reference, const std::string& reference_family,
+                  const std::string& finest_voxel_key, nlohmann::json& report)
 {
   std::vector<const Run*> mesh_runs;
   for (const Run& run : runs)
-    if (run.spec.family == "quasi-static, mesh" && run.failure.empty())
+    if (run.spec.family == reference_family && run.failure.empty())
       mesh_runs.push_back(&run);
   const std::map<double, double> extrapolated = extrapolated_energy(mesh_runs, report);
   const auto sweep_of = [&](const std::string& key) -> const FlexionFigures* {
@@ -286,7 +347,7 @@ void compare_runs(std::vector<Run>& runs, const std::string& ligament,
     if (run.spec.family == "quasi-static, voxel")
       family = sweep_of(finest_voxel_key);
     else if (run.spec.time_step_s > 0.0)
-      family = sweep_of(model_name(run.spec.mesh_scale, 1.0) + "-0");
+      family = sweep_of(model_name(run.spec.mesh_scale, 1.0, run.spec.order) + "-0");
     run.worst_vs_family.fill(kNaN);
     if (family)
       run.worst_vs_family = worst_errors(angle_errors(run.flexion, *family));
@@ -322,17 +383,23 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   std::vector<double> voxel_scales = ladder.voxel_scales;
   std::sort(voxel_scales.rbegin(), voxel_scales.rend());
   const double finest_mesh = mesh_scales.back();
+  std::vector<int> orders = ladder.orders.empty() ? std::vector<int>{0} : ladder.orders;
+  std::sort(orders.begin(), orders.end());
+  orders.erase(std::unique(orders.begin(), orders.end()), orders.end());
+  const int reference_order = orders.back(), other_order = orders.front();
+  const std::string reference_family = mesh_family(reference_order);
 
   std::vector<RunSpec> specs;
-  for (double s : mesh_scales)
-    specs.push_back({"quasi-static, mesh", s, 1.0, 0.0});
+  for (int order : orders)
+    for (double s : mesh_scales)
+      specs.push_back({mesh_family(order), s, 1.0, 0.0, order});
   for (double v : voxel_scales)
-    specs.push_back({"quasi-static, voxel", ladder.voxel_mesh_scale, v, 0.0});
+    specs.push_back({"quasi-static, voxel", ladder.voxel_mesh_scale, v, 0.0, other_order});
   for (double s : ladder.interactive_mesh_scales) {
     std::vector<double> steps = ladder.time_steps_s;
     std::sort(steps.rbegin(), steps.rend());
     for (double dt : steps)
-      specs.push_back({fmt::format("interactive, mesh x{:g}", s), s, 1.0, dt});
+      specs.push_back({fmt::format("interactive, mesh x{:g}", s), s, 1.0, dt, other_order});
   }
 
   // One model per (mesh, voxel) and one flexion per (model, mode, dt): shared between families.
@@ -342,7 +409,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   std::vector<std::vector<Run>> runs(names.size()); // per ligament
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const RunSpec& spec = specs[i];
-    const std::string name = model_name(spec.mesh_scale, spec.voxel_scale);
+    const std::string name = model_name(spec.mesh_scale, spec.voxel_scale, spec.order);
     const std::string sweep_key = fmt::format("{}-{:g}", name, spec.time_step_s);
     log_info(fmt::format("study convergence: run {} of {}: {} ({}{})", i + 1, specs.size(),
                          spec.family, name,
@@ -351,8 +418,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
     try {
       if (!models.count(name))
         models[name] =
-            build_model(scaled_model(inputs.model, thickness, spec.mesh_scale, spec.voxel_scale),
-                        inputs.out / "models" / name);
+            build_model(scaled_model(inputs.model, thickness, spec), inputs.out / "models" / name);
       if (!sweeps.count(sweep_key) && models[name].any_built()) {
         sim::FlexionSettings settings = inputs.flexion;
         settings.model_dir = models[name].dir;
@@ -389,7 +455,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
   }
 
   // The reference: the finest quasi-static mesh, every ligament's.
-  const std::string reference_key = model_name(finest_mesh, 1.0) + "-0";
+  const std::string reference_key = model_name(finest_mesh, 1.0, reference_order) + "-0";
   const auto reference = sweeps.find(reference_key);
   const auto reference_of = [&](std::size_t l) {
     return reference == sweeps.end() ? nullptr : figures_of(reference->second, names[l]);
@@ -399,13 +465,15 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
       continue;
     std::string failure = "not run";
     for (const Run& run : runs[l])
-      if (run.spec.family == "quasi-static, mesh" && run.spec.mesh_scale == finest_mesh)
+      if (run.spec.family == reference_family && run.spec.mesh_scale == finest_mesh)
         failure = run.failure;
     fail<SolverError>("study convergence: the reference run ({}{}) failed: {}", reference_key,
                       names.size() > 1 ? ", " + names[l] : "", failure);
   }
   const std::string finest_voxel_key =
-      model_name(1.0, voxel_scales.empty() ? 1.0 : voxel_scales.back()) + "-0";
+      model_name(ladder.voxel_mesh_scale, voxel_scales.empty() ? 1.0 : voxel_scales.back(),
+                 other_order) +
+      "-0";
 
   nlohmann::json report;
   nlohmann::json ligaments = nlohmann::json::array();
@@ -415,13 +483,15 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
     const FlexionFigures& own = *reference_of(l);
     nlohmann::json entry = {
         {"ligament", names[l]}, {"thickness_mm", thickness[l]}, {"reference_tets", own.tets}};
-    compare_runs(runs[l], names[l], sweeps, own, finest_voxel_key, entry);
+    compare_runs(runs[l], names[l], sweeps, own, reference_family, finest_voxel_key, entry);
+    entry["fastest_within_1pct_femur_force"] =
+        fastest_converged(runs[l], reference_family, finest_mesh);
     ligaments.push_back(entry);
     reference_tets += own.tets;
     reference_text += names.size() > 1 ? fmt::format(", {} {} tets", names[l], own.tets)
                                        : fmt::format(", {} tets", own.tets);
   }
-  write_tables(runs, inputs.out, reference_text);
+  write_tables(runs, inputs.out, reference_text, ligaments);
   write_convergence_plot(runs, inputs.out, inputs.png);
 
   report["reference"] = {{"tets", reference_tets}, {"model", reference_key}};
@@ -434,6 +504,8 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
            {"family", run.spec.family},
            {"mesh_scale", run.spec.mesh_scale},
            {"voxel_scale", run.spec.voxel_scale},
+           {"order",
+            run.spec.order > 0 ? nlohmann::json(run.spec.order) : nlohmann::json("config")},
            {"time_step_s", run.spec.time_step_s},
            {"tets", run.flexion.tets},
            {"build_s", run.build.build_s},

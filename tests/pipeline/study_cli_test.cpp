@@ -13,17 +13,25 @@
 using namespace ligsim::test;
 namespace fs = std::filesystem;
 
+namespace {
+
+/// `study convergence` of the band on two meshes, one voxel size and one time step, with `more`.
+CliResult run_short_convergence(const StudyBand& band, const std::string& more, const fs::path& out)
+{
+  return run_ligsim("study convergence --model-config " + band.build_config.string() +
+                    " --config " + band.flexion_config.string() +
+                    " --mesh-scales 3,2 --voxel-scales 2 --voxel-mesh-scale 3 --time-steps 0.1 "
+                    "--interactive-mesh-scales 3 " +
+                    more + " --out " + out.string());
+}
+
+} // namespace
+
 TEST(StudyCli, ConvergenceLaddersAgainstTheFinestRun)
 {
   const StudyBand band("convergence");
   const fs::path out = fresh_folder("study_convergence_" + band.tag);
-  const CliResult result =
-      run_ligsim("study convergence --model-config " + band.build_config.string() + " --config " +
-                 band.flexion_config.string() +
-                 " --mesh-scales 3,2 --voxel-scales 2 --voxel-mesh-scale 3 --time-steps 0.1 "
-                 "--interactive-mesh-scales 3 "
-                 "--out " +
-                 out.string());
+  const CliResult result = run_short_convergence(band, "", out);
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   for (const char* file : {"convergence.csv", "convergence_angles.csv", "convergence.md",
                            "convergence.svg", "convergence.png", "summary.json"})
@@ -61,6 +69,51 @@ TEST(StudyCli, ConvergenceLaddersAgainstTheFinestRun)
   EXPECT_TRUE(fs::exists(model / ".ligsim-cache"));
   const nlohmann::json built = read_json(model / "summary.json");
   EXPECT_EQ(built["job"], "build");
+}
+
+TEST(StudyCli, ConvergenceOfBothElementOrdersAgainstTheFinestTenNodeMesh)
+{
+  const StudyBand band("convergence_orders");
+  const fs::path out = fresh_folder("study_convergence_orders_" + band.tag);
+  const CliResult result = run_short_convergence(band, "--orders 2,1 --no-png", out);
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json& runs = summary["results"]["runs"];
+  ASSERT_EQ(runs.size(), 6u); // 2 meshes of each order, 1 voxel, 1 time step
+  const std::string linear = "quasi-static, mesh, linear tets";
+  const std::string quadratic = "quasi-static, mesh, 10-node tets";
+  EXPECT_EQ(runs[0]["family"], linear);
+  EXPECT_EQ(runs[1]["family"], linear);
+  EXPECT_EQ(runs[2]["family"], quadratic);
+  EXPECT_EQ(runs[3]["family"], quadratic);
+  for (const auto& run : runs)
+    EXPECT_EQ(run["failure"], "") << run.dump();
+  // The reference is the finest 10-node mesh: compared with itself it has no error.
+  EXPECT_EQ(summary["results"]["reference"]["model"], "mesh2-voxel1-order2-0");
+  EXPECT_EQ(runs[3]["energy_error"].get<double>(), 0.0);
+  EXPECT_EQ(runs[3]["tets"], summary["results"]["reference"]["tets"]);
+  // On the same coarse mesh, 10-node tets come closer to the reference than linear ones.
+  EXPECT_LT(runs[2]["femur_force_error"].get<double>(), runs[0]["femur_force_error"].get<double>());
+  EXPECT_EQ(read_json(out / "models" / "mesh3-voxel1-order2" /
+                      "summary.json")["stages"]["tetmesh"]["figures"]["used"]["order"],
+            2);
+  // The voxel and interactive runs take the lower order.
+  EXPECT_TRUE(fs::exists(out / "models" / "mesh3-voxel2-order1" / "model.vtu"));
+  EXPECT_EQ(runs[4]["order"], 1);
+  const nlohmann::json& ligament = summary["results"]["ligaments"][0];
+  ASSERT_TRUE(ligament.contains("fastest_within_1pct_femur_force"));
+  const nlohmann::json& fastest = ligament["fastest_within_1pct_femur_force"];
+  if (!fastest.is_null())
+    EXPECT_LE(fastest["femur_force_error"].get<double>(), 0.01);
+  std::ifstream md(out / "convergence.md");
+  const std::string text{std::istreambuf_iterator<char>(md), {}};
+  EXPECT_NE(text.find("in the least solve time"), std::string::npos);
+
+  const CliResult bad =
+      run_ligsim("study convergence --model-config " + band.build_config.string() +
+                 " --orders 3 --out " + (out / "bad").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.stderr_text.find("--orders"), std::string::npos) << bad.stderr_text;
 }
 
 TEST(StudyCli, SensitivitySpreadAndShares)
