@@ -34,6 +34,9 @@ struct KneeManifest {
 };
 
 inline constexpr const char* knee_manifest_file = "knee.json";
+/// A ligament's folder keeps, in this folder, the same ligament meshed coarser: the companion
+/// model `ligsim flexion` estimates its discretisation error with.
+inline constexpr const char* companion_model_folder = "companion";
 
 nlohmann::json to_json(const KneeManifest& manifest);
 /// Throws InputError naming `where` on a malformed document (a missing key, a ligament without

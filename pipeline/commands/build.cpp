@@ -10,6 +10,7 @@
 #include "pipeline/commands/anatomy_outputs.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
+#include "pipeline/stage_graph/companion_build.hpp"
 #include "pipeline/stage_graph/knee_build.hpp"
 #include "pipeline/stage_graph/knee_from_labels.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
@@ -423,6 +424,8 @@ void run_build_job(const BuildOptions& o, const std::string& target)
                                              {"used", defaults_by_name}};
   try {
     pipeline::run_target(config, out, target, o.force, summary);
+    if (target == "model")
+      pipeline::build_companion(config, out, o.force, summary);
   } catch (const Error&) {
     clean_up();
     throw;

@@ -10,6 +10,7 @@
 #include "pipeline/render/knee_pictures.hpp"
 #include "pipeline/render/offscreen_display.hpp"
 #include "pipeline/reports/knee_reports.hpp"
+#include "sim/flexion/error_estimate.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -39,6 +40,7 @@ struct FlexionJobOptions {
   FlexionOptions flexion;
   fs::path out;
   bool no_images = false;
+  bool no_error_estimate = false;
 };
 
 /// The Weiss material's parameters as summary.json records them.
@@ -171,28 +173,45 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
   return json;
 }
 
-/// The table on stdout: a row per ligament and angle.
+/// "+-0.6", or "-" where there is no estimate.
+std::string plus_minus(double error, double scale, int digits)
+{
+  return std::isnan(error) ? std::string("-") : fmt::format("+-{:.{}f}", scale * error, digits);
+}
+
+/// The table on stdout: a row per ligament and angle, with each figure's estimated
+/// discretisation error (+-) where the flexion estimated it.
 void print_table(const std::vector<sim::LigamentSweep>& sweeps,
                  const std::vector<sim::LigamentModel>& ligaments)
 {
-  fmt::print("{:<8} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>9} {:>4}\n",
-             "ligament", "angle", "femur_N", "net_N", "distal_N", "contact_N", "energy_mJ",
-             "mean_%", "max_%", "region_%", "dL_mm", "dL_%", "conv");
+  fmt::print("{:<8} {:>6} {:>9} {:>7} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>6} {:>8} "
+             "{:>9} {:>4}\n",
+             "ligament", "angle", "femur_N", "+-N", "net_N", "distal_N", "contact_N", "energy_mJ",
+             "mean_%", "max_%", "region_%", "+-%", "dL_mm", "dL_%", "conv");
   for (std::size_t l = 0; l < sweeps.size(); ++l)
     for (const sim::AngleResult& a : sweeps[l].result.angles) {
       double contact = 0.0;
       for (const sim::BoneContact& bone : a.contact)
         contact += bone.in_solve ? bone.force_n.norm() : 0.0;
-      fmt::print("{:<8} {:>6} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} {:>8.2f} "
-                 "{:>8.2f} {:>8.2f} {:>9.2f} {:>4}\n",
+      fmt::print("{:<8} {:>6} {:>9.1f} {:>7} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.3f} {:>8.2f} "
+                 "{:>8.2f} {:>8.2f} {:>6} {:>8.2f} {:>9.2f} {:>4}\n",
                  sweeps[l].name, sim::angle_label(a.angle_deg), a.femur_force_n.norm(),
-                 sim::femur_net_force(a).norm(), a.tibia_force_n.norm(), contact,
-                 a.strain_energy_mj, 100.0 * (a.mean_fiber_stretch - 1.0),
-                 100.0 * (a.max_fiber_stretch - 1.0), 100.0 * (a.max_regional_fiber_stretch - 1.0),
-                 a.length_change_mm, a.length_change_pct, a.converged ? "yes" : "no");
+                 plus_minus(a.error.femur_force_n, 1.0, 1), sim::femur_net_force(a).norm(),
+                 a.tibia_force_n.norm(), contact, a.strain_energy_mj,
+                 100.0 * (a.mean_fiber_stretch - 1.0), 100.0 * (a.max_fiber_stretch - 1.0),
+                 100.0 * (a.max_regional_fiber_stretch - 1.0),
+                 plus_minus(a.error.regional_fiber_strain, 100.0, 2), a.length_change_mm,
+                 a.length_change_pct, a.converged ? "yes" : "no");
     }
   fmt::print("(femur_N: the femoral footprint's reaction; net_N: with the femur's contact, the "
              "ligament's whole pull on the femur)\n");
+  if (std::any_of(sweeps.begin(), sweeps.end(), [](const sim::LigamentSweep& sweep) {
+        return std::any_of(
+            sweep.result.angles.begin(), sweep.result.angles.end(),
+            [](const sim::AngleResult& a) { return !std::isnan(a.error.femur_force_n); });
+      }))
+    fmt::print("(+-: the estimated discretisation error, from the companion model meshed coarser: "
+               "Roache's grid convergence index)\n");
   if (ligaments.size() > 1)
     fmt::print("(distal_N: the force on the bone of the distal footprint: {})\n", [&] {
       std::string text;
@@ -307,7 +326,7 @@ void run_flexion(const FlexionJobOptions& options)
                                      options.out);
   std::map<double, std::vector<Eigen::VectorXd>> states; // per angle, per ligament
   StageMeter sweep_meter;
-  const std::vector<sim::LigamentSweep> sweeps = sim::run_knee_sweep(
+  std::vector<sim::LigamentSweep> sweeps = sim::run_knee_sweep(
       ligaments, motion, settings, settings.model_dir / "contact",
       [&](std::size_t l, const sim::HyperelasticBody& body, const sim::AngleResult& angle,
           const Eigen::VectorXd& x) {
@@ -322,6 +341,16 @@ void run_flexion(const FlexionJobOptions& options)
         }
       },
       free ? free->equilibria : sim::EquilibriumGuesses{});
+  std::vector<sim::CompanionSweep> companions;
+  if (!options.no_error_estimate) {
+    StageMeter estimate_meter;
+    companions = sim::estimate_sweep_errors(ligaments, motion, settings,
+                                            settings.model_dir / "contact", sweeps);
+    summary.add_stage("error_estimate", estimate_meter,
+                      {{"companions_swept",
+                        std::count_if(companions.begin(), companions.end(),
+                                      [](const sim::CompanionSweep& c) { return c.swept; })}});
+  }
   std::vector<std::vector<sim::AngleResult>> angles;
   bool success = true;
   std::string failure;
@@ -348,6 +377,8 @@ void run_flexion(const FlexionJobOptions& options)
   nlohmann::json& results = summary.results();
   for (const sim::LigamentSweep& sweep : sweeps)
     results["ligaments"][sweep.name] = ligament_results(sweep);
+  for (const sim::CompanionSweep& companion : companions)
+    results["ligaments"][companion.ligament]["error_estimate"] = reports::to_json(companion);
   if (ligaments.size() > 1)
     results["pairs"] = reports::to_json(sim::pairs_over_sweep(ligaments, states, options.out));
   results["success"] = success;
@@ -387,6 +418,9 @@ void add_flexion_command(CLI::App& app)
   add_flexion_options(*command, options->flexion, true);
   command->add_option("--out", options->out, "output folder")->required();
   command->add_flag("--no-images", options->no_images, "no PNG pictures (no X server needed)");
+  command->add_flag("--no-error-estimate", options->no_error_estimate,
+                    "no companion solve on the coarser mesh, so no estimate of the figures' "
+                    "discretisation error");
   command->callback([options] { run_flexion(*options); });
 }
 

@@ -117,6 +117,22 @@ nlohmann::json footprints_json(const std::vector<sim::Footprint>& prints,
   return json;
 }
 
+nlohmann::json to_json(const sim::CompanionSweep& companion)
+{
+  nlohmann::json json = {{"companion", companion.folder.string()}, {"swept", companion.swept}};
+  if (companion.swept)
+    json.update({{"tets", companion.tets},
+                 {"size_ratio", companion.size_ratio},
+                 {"wall_s", companion.wall_s},
+                 {"angles_estimated", companion.angles_reached},
+                 {"method", "Roache's grid convergence index, Fs |f - f_companion| / (r^p - 1) "
+                            "with Fs = 3, p = 2 and r the size ratio (J Fluids Eng "
+                            "1994;116:405)"}});
+  if (!companion.note.empty())
+    json["note"] = companion.note;
+  return json;
+}
+
 nlohmann::json to_json(const sim::AngleResult& angle)
 {
   const Eigen::Vector3d femur_net = sim::femur_net_force(angle);
@@ -146,6 +162,10 @@ nlohmann::json to_json(const sim::AngleResult& angle)
     entry["time_s"] = angle.time_s;
   if (!std::isnan(angle.max_regional_fiber_stretch))
     entry["max_regional_fiber_strain"] = angle.max_regional_fiber_stretch - 1.0;
+  if (!std::isnan(angle.error.femur_force_n))
+    entry["femur_force_error_n"] = angle.error.femur_force_n;
+  if (!std::isnan(angle.error.regional_fiber_strain))
+    entry["max_regional_fiber_strain_error"] = angle.error.regional_fiber_strain;
   if (!std::isnan(angle.length_mm))
     entry.update({{"length_mm", angle.length_mm},
                   {"length_change_mm", angle.length_change_mm},

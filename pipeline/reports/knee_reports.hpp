@@ -4,6 +4,7 @@
 /// footprints and cross-sections. The results are typed in sim/; JSON is written here, at the
 /// edge.
 
+#include "sim/flexion/error_estimate.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/initial_overlap.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -22,6 +23,10 @@ namespace ligsim::reports {
 
 /// One angle of a sweep (summary.json's per-angle entries).
 nlohmann::json to_json(const sim::AngleResult& angle);
+
+/// A ligament's companion solve: the mesh, the size ratio, its time and how the error is
+/// estimated.
+nlohmann::json to_json(const sim::CompanionSweep& companion);
 
 /// How the flexion axis was found: the two points, the condyle fit's figures, or the epicondyles.
 nlohmann::json to_json(const sim::AxisFigures& figures);

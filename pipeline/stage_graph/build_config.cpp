@@ -39,6 +39,14 @@ void read_stage_sections(const toml::table& table, const std::string& prefix, co
                [](auto& p, auto&& v) { visit_fibers(p, v); });
   read_section(&table, "model", prefix + "model", file, config.model,
                [](auto& p, auto&& v) { visit_model(p, v); });
+  read_section(&table, "error_estimate", prefix + "error_estimate", file, config.error_estimate,
+               [](auto& p, auto&& v) { visit_error_estimate(p, v); });
+  // Below a ratio of 1.3 the two meshes' difference is too close to their noise (Celik et al.,
+  // J Fluids Eng 2008;130:078001).
+  const double scale = config.error_estimate.mesh_scale;
+  if (scale != 0.0 && !(scale >= 1.3 && scale <= 4.0))
+    fail("{}: [{}error_estimate] mesh_scale must be 0 (no estimate) or from 1.3 to 4, got {}",
+         file.string(), prefix, scale);
   read_section(&table, "flexion", prefix + "flexion", file, config.flexion,
                [](auto& p, auto&& v) { visit_flexion(p, v); });
   if (const toml::table* flexion = table_at(&table, "flexion"))
@@ -260,6 +268,8 @@ nlohmann::json to_json(const BuildConfig& c)
   for (const char* stage : {"anatomy", "attachments", "voxelize", "distance", "centerline", "field",
                             "tetmesh", "fibers", "model"})
     all[stage] = stage_parameters(c, stage);
+  all["error_estimate"] =
+      as_json(c.error_estimate, [](auto& p, auto&& v) { visit_error_estimate(p, v); });
   return all;
 }
 

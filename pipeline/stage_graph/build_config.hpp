@@ -68,6 +68,13 @@ struct AnatomyInputs {
   std::optional<KneeAnatomy> known;
 };
 
+/// The companion model `ligsim flexion` estimates its discretisation error with: the same ligament
+/// meshed `mesh_scale` times coarser (cell and facet sizes and facet distance), built beside the
+/// model in its folder's companion/ (companion_build.hpp). 0: no companion, no estimate.
+struct ErrorEstimateParameters {
+  double mesh_scale = 1.5;
+};
+
 struct BuildConfig {
   std::filesystem::path surface; ///< ligament surface (required)
   std::filesystem::path femur;   ///< optional
@@ -96,6 +103,7 @@ struct BuildConfig {
   model::Parameters model;
   MaterialDefaults material;
   FlexionDefaults flexion;
+  ErrorEstimateParameters error_estimate;
   /// The ligament's part, when its name (its label's, in a label map) is one that
   /// anatomy::recognise_part knows: "MCL", "LCL", "ACL", "PCL"; empty otherwise.
   std::string ligament_part;

@@ -107,6 +107,11 @@ template <class P, class Visit> void visit_model(P& p, Visit&& visit)
   visit("in_situ_strain", p.in_situ_strain);
 }
 
+template <class P, class Visit> void visit_error_estimate(P& p, Visit&& visit)
+{
+  visit("mesh_scale", p.mesh_scale);
+}
+
 template <class P, class Visit> void visit_material(P& p, Visit&& visit)
 {
   visit("mu_mpa", p.mu_mpa);

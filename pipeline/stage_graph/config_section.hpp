@@ -131,8 +131,8 @@ inline std::string relative_to(const fs::path& config_file, const std::string& t
 /// [attachments] and [material]).
 inline const std::vector<std::string>& stage_section_names()
 {
-  static const std::vector<std::string> names = {"voxelize", "centerline", "field",  "tetmesh",
-                                                 "fibers",   "model",      "flexion"};
+  static const std::vector<std::string> names = {
+      "voxelize", "centerline", "field", "tetmesh", "fibers", "model", "error_estimate", "flexion"};
   return names;
 }
 

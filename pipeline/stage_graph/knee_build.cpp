@@ -5,6 +5,7 @@
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
 #include "common/vtk_files.hpp"
+#include "pipeline/stage_graph/companion_build.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
 #include "stages/io/vtk_convert.hpp"
@@ -83,6 +84,8 @@ void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,
                   {ligament.distal_bone, ligament.build.tibia.string()}};
   own.parameters() = to_json(ligament.build);
   run_target(ligament.build, dir / ligament.name, target, force, own);
+  if (target == "model")
+    build_companion(ligament.build, dir / ligament.name, force, own);
   own.write(dir / ligament.name);
   for (const auto& [stage, entry] : own.json()["stages"].items())
     summary.stage(ligament.name + "/" + stage) = entry;

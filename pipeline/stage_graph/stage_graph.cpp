@@ -50,11 +50,6 @@ std::vector<const Stage*> plan(const std::string& target)
   return order;
 }
 
-fs::path cache_file(const fs::path& dir, const std::string& stage)
-{
-  return dir / ".ligsim-cache" / (stage + ".json");
-}
-
 std::string stage_key(const Stage& stage, const BuildConfig& config, const fs::path& dir)
 {
   ContentHash hash;
@@ -87,6 +82,11 @@ nlohmann::json read_cache(const fs::path& file)
 
 } // namespace
 
+fs::path stage_cache_file(const fs::path& dir, const std::string& stage)
+{
+  return dir / ".ligsim-cache" / (stage + ".json");
+}
+
 void run_target(const BuildConfig& config, const fs::path& dir, const std::string& target,
                 bool force, RunSummary& summary)
 {
@@ -94,7 +94,7 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
   ensure_directory(dir / ".ligsim-cache");
   for (const Stage* stage : plan(target)) {
     const std::string key = stage_key(*stage, config, dir);
-    const nlohmann::json cached = read_cache(cache_file(dir, stage->name));
+    const nlohmann::json cached = read_cache(stage_cache_file(dir, stage->name));
     bool current = !force && cached.is_object() && cached.value("key", "") == key;
     for (const std::string& output : stage->outputs)
       current = current && fs::exists(dir / output);
@@ -114,7 +114,7 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
     // stage leaves no record, so a later run never takes a mix of old and new outputs as the
     // old parameters' result.
     std::error_code ignored;
-    fs::remove(cache_file(dir, stage->name), ignored);
+    fs::remove(stage_cache_file(dir, stage->name), ignored);
     const StageMeter meter;
     nlohmann::json figures = stage->run(config, dir);
     summary.add_stage(stage->name, meter, {{"status", "ran"}, {"figures", figures}});
@@ -122,7 +122,7 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
                                    {"figures", figures},
                                    {"wall_s", meter.wall_s()},
                                    {"peak_rss_mib", meter.peak_rss_mib()}};
-    write_text_atomically(cache_file(dir, stage->name), record.dump(2) + "\n");
+    write_text_atomically(stage_cache_file(dir, stage->name), record.dump(2) + "\n");
   }
 }
 

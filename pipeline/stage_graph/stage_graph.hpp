@@ -31,6 +31,9 @@ struct Stage {
 /// The stages in data-flow order.
 const std::vector<Stage>& build_stages();
 
+/// Where the record of `stage`'s last run in `dir` is kept (its key, figures and time).
+std::filesystem::path stage_cache_file(const std::filesystem::path& dir, const std::string& stage);
+
 /// Runs `target` and the stages it needs, in order. A stage is reused (not rerun) when all its
 /// outputs exist and the key stored beside them (a hash of the stage's parameters, its user
 /// input files and its upstream outputs) is current; `force` reruns them all. Records every

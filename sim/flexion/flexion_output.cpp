@@ -108,7 +108,7 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
                     "mean_fiber_strain,max_fiber_strain,volume_beyond_failure_strain,"
                     "length_change_mm,length_change_pct,time_s,max_regional_fiber_strain";
   csv += fibula ? ",fibula_force_n,fibula_contact_n,fibula_contact_area_mm2" : "";
-  csv += ",femur_net_force_n\n";
+  csv += ",femur_net_force_n,femur_force_error_n,max_regional_fiber_strain_error\n";
   const auto number = [](double value) {
     return std::isnan(value) ? std::string() : fmt::format("{:.6g}", value);
   };
@@ -143,7 +143,8 @@ void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) 
       if (fibula)
         csv += fmt::format(",{},{},{}", on_tibia ? "" : distal, contact["fibula"].first,
                            contact["fibula"].second);
-      csv += fmt::format(",{:.9g}\n", femur_net_force(a).norm());
+      csv += fmt::format(",{:.9g},{},{}\n", femur_net_force(a).norm(),
+                         number(a.error.femur_force_n), number(a.error.regional_fiber_strain));
     }
   }
   write_text_atomically(m_directory / "flexion.csv", csv);

@@ -73,6 +73,12 @@ FiberMeasures measure_fibers(const HyperelasticBody& body, const Eigen::VectorXd
 RegionalMean element_regions(const HyperelasticBody& body, double radius_mm);
 
 /// The state at one angle of the sweep.
+/// A figure's estimated discretisation error at an angle (error_estimate.hpp); NaN: none.
+struct AngleError {
+  double femur_force_n = NAN;         ///< of |femur_force_n|
+  double regional_fiber_strain = NAN; ///< of the max regional fiber strain (stretch - 1)
+};
+
 struct AngleResult {
   double angle_deg = 0.0;
   double load_factor = 0.0;
@@ -107,6 +113,7 @@ struct AngleResult {
   std::vector<BoneContact> contact;
   Eigen::VectorXd gap_mm;
   Eigen::VectorXd pressure_mpa;
+  AngleError error; ///< from a companion solve, when the flexion ran one
 };
 
 /// What `bone` exerts on the ligament through its footprint (`footprint_n`: the angle's

@@ -144,7 +144,7 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
                                           const KneeMotion& motion, const FlexionSettings& settings,
                                           const fs::path& contact_cache,
                                           const KneeAngleCallback& on_angle,
-                                          const EquilibriumGuesses& guesses)
+                                          const EquilibriumGuesses& guesses, bool log_warnings)
 {
   const RigidMotion femur_motion = femur_rigid_motion(motion);
   const SweepSteps steps = motion_steps(motion);
@@ -184,8 +184,9 @@ std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& liga
         body, conditions, sweep.settings,
         [&](const AngleResult& angle, const HyperelasticBody& swept, const Eigen::VectorXd& x) {
           for (const std::string& warning : plausibility_warnings(angle, plausibility)) {
-            log_info(fmt::format("warning at {} deg: {}{}", angle_label(angle.angle_deg),
-                                 ligaments.size() > 1 ? ligament.name + ": " : "", warning));
+            if (log_warnings)
+              log_info(fmt::format("warning at {} deg: {}{}", angle_label(angle.angle_deg),
+                                   ligaments.size() > 1 ? ligament.name + ": " : "", warning));
             sweep.warnings.push_back({angle.angle_deg, warning});
           }
           if (on_angle)

@@ -75,13 +75,15 @@ using KneeAngleCallback = std::function<void(std::size_t ligament, const Hyperel
 
 /// Sweeps every ligament through `motion`, one after the other; the bones' contact grids are
 /// cached in `contact_cache` (shared by the ligaments). A ligament named in `guesses` starts
-/// each angle from its guess there. Never throws on divergence: each ligament's result says
-/// where it stopped.
+/// each angle from its guess there. The plausibility warnings go to stderr unless
+/// `log_warnings` is false (a companion solve's; each sweep keeps them). Never throws on
+/// divergence: each ligament's result says where it stopped.
 std::vector<LigamentSweep> run_knee_sweep(const std::vector<LigamentModel>& ligaments,
                                           const KneeMotion& motion, const FlexionSettings& settings,
                                           const std::filesystem::path& contact_cache,
                                           const KneeAngleCallback& on_angle,
-                                          const EquilibriumGuesses& guesses = {});
+                                          const EquilibriumGuesses& guesses = {},
+                                          bool log_warnings = true);
 
 /// The knee's frames per second in interactive mode: every ligament's frame in turn, so the
 /// reciprocal of the summed seconds per frame.

@@ -193,6 +193,7 @@ surface = "mcl.stl"
 [tetmesh]
 [fibers]
 [model]
+[error_estimate]
 [material]
 [flexion]
 )"},

@@ -126,4 +126,20 @@ inline std::vector<std::string> lines(const std::filesystem::path& file)
   return result;
 }
 
+/// Builds the synthetic band of `shape` (a `ligsim synth band` folder) into a fresh folder
+/// `name`, with 0.4 mm voxels and the further config text `keys`.
+inline std::filesystem::path build_band_model(const std::filesystem::path& shape,
+                                              const std::string& name, const std::string& keys)
+{
+  const std::filesystem::path out = fresh_folder(name);
+  const std::filesystem::path config = scratch_root() / (name + ".toml");
+  std::ofstream(config) << "[voxelize]\nspacing_mm = 0.4\n\n" << keys;
+  const CliResult built =
+      run_ligsim("build --config " + config.string() + " --surface " +
+                 (shape / "surface.stl").string() + " --femur " + (shape / "femur.stl").string() +
+                 " --tibia " + (shape / "tibia.stl").string() + " --out " + out.string());
+  EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
+  return out;
+}
+
 } // namespace ligsim::test

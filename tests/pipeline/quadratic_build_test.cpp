@@ -26,16 +26,8 @@ namespace {
 /// Builds the band (made once in `shape`) with tets of `order` into a fresh folder.
 fs::path build_band(const fs::path& shape, int order)
 {
-  const fs::path out = fresh_folder(fmt::format("quadratic_band_order_{}", order));
-  const fs::path config = scratch_root() / fmt::format("band_order_{}.toml", order);
-  std::ofstream(config) << fmt::format("[voxelize]\nspacing_mm = 0.4\n\n[tetmesh]\norder = {}\n",
-                                       order);
-  const CliResult built =
-      run_ligsim("build --config " + config.string() + " --surface " +
-                 (shape / "surface.stl").string() + " --femur " + (shape / "femur.stl").string() +
-                 " --tibia " + (shape / "tibia.stl").string() + " --out " + out.string());
-  EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
-  return out;
+  return build_band_model(shape, fmt::format("quadratic_band_order_{}", order),
+                          fmt::format("[tetmesh]\norder = {}\n", order));
 }
 
 /// The femur force at each angle of a sweep of `model` to 30 degrees.
