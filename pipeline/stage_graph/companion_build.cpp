@@ -14,6 +14,8 @@
 #include <string>
 #include <system_error>
 
+#include <fcntl.h>
+#include <stdio.h>
 #include <unistd.h>
 
 namespace ligsim::pipeline {
@@ -67,6 +69,21 @@ void remove_temporaries(const fs::path& dir)
       fs::remove_all(entry.path(), ignored);
 }
 
+/// Puts the companion built in `building` in the place of `companion`: one exchange of the two
+/// folders (renameat2 RENAME_EXCHANGE), so that a run killed at any moment leaves the old
+/// companion whole or the new one; where the file system cannot exchange, the old one is moved
+/// aside first. The old one is left at `building`, a temporary.
+void put_in_place(const fs::path& building, const fs::path& companion)
+{
+  if (fs::exists(companion) &&
+      ::renameat2(AT_FDCWD, building.c_str(), AT_FDCWD, companion.c_str(), RENAME_EXCHANGE) == 0)
+    return;
+  const fs::path aside = building.string() + "-old";
+  if (fs::exists(companion))
+    fs::rename(companion, aside);
+  fs::rename(building, companion);
+}
+
 /// Removes the companion folder, first renamed to a temporary, so that a run killed halfway
 /// leaves the whole companion or none.
 void remove_companion(const fs::path& dir)
@@ -108,11 +125,21 @@ void build_companion(const BuildConfig& config, const fs::path& dir, bool force,
                        "estimate",
                        scale));
   RunSummary own("build");
+  // Built aside from the old companion's files (hard links: its current stages are reused) and
+  // put in its place when complete.
+  const fs::path building = dir / (temporary_prefix() + std::to_string(::getpid()));
   try {
     const BuildConfig coarse = coarser(config, scale);
-    share_upstream_stages(dir, companion);
-    run_target(coarse, companion, "model", force, own);
+    if (fs::exists(companion))
+      fs::copy(companion, building,
+               fs::copy_options::recursive | fs::copy_options::create_hard_links);
+    share_upstream_stages(dir, building);
+    run_target(coarse, building, "model", force, own);
+    put_in_place(building, companion);
+    remove_temporaries(dir);
   } catch (const std::exception& error) { // CGAL's too: the model stands without a companion
+    std::error_code ignored;
+    fs::remove_all(building, ignored);
     remove_companion(dir);
     log_info(fmt::format("companion: not built ({}); ligsim flexion will report no error "
                          "estimate for this model",

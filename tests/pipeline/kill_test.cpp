@@ -45,11 +45,16 @@ std::string read_bytes(const fs::path& file)
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// What AtomicFile leaves behind when its writer is killed: ".<stem>.tmp-<pid><ext>".
+/// What AtomicFile leaves behind when its writer is killed: ".<stem>.tmp-<pid><ext>"; and the
+/// folder a companion model is built in (".companion.tmp-<pid>"), with what is in it.
 bool is_temporary(const fs::path& file)
 {
-  const std::string name = file.filename().string();
-  return name.rfind('.', 0) == 0 && name.find(".tmp-") != std::string::npos;
+  for (const fs::path& part : file) {
+    const std::string name = part.string();
+    if (name.rfind('.', 0) == 0 && name.find(".tmp-") != std::string::npos)
+      return true;
+  }
+  return false;
 }
 
 /// Every file under `dir` but the temporaries.
