@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <exception>
+#include <fstream>
 #include <set>
 #include <string>
 #include <system_error>
@@ -95,13 +96,25 @@ void remove_companion(const fs::path& dir)
   remove_temporaries(dir);
 }
 
-/// `config` with the tetmesh sizes it resolves to (its defaults from the surface's thickness)
-/// times `scale`.
-BuildConfig coarser(const BuildConfig& config, double scale)
+/// `config` with the tetmesh sizes the model's tetmesh stage used (its record in `dir`, where the
+/// defaults from the surface's thickness are resolved) times `scale`.
+BuildConfig coarser(const BuildConfig& config, const fs::path& dir, double scale)
 {
   BuildConfig companion = config;
   tetmesh::Parameters& sizes = companion.tetmesh;
-  sizes = tetmesh::default_sizes(load_ligament(config), config.tetmesh);
+  std::ifstream record(stage_cache_file(dir, "tetmesh"));
+  const nlohmann::json stage = nlohmann::json::parse(record, nullptr, false);
+  const nlohmann::json used =
+      stage.is_object()
+          ? stage.value("figures", nlohmann::json::object()).value("used", nlohmann::json())
+          : nlohmann::json();
+  if (used.is_object()) {
+    sizes.cell_size_mm = used.at("cell_size_mm").get<double>();
+    sizes.facet_size_mm = used.at("facet_size_mm").get<double>();
+    sizes.facet_distance_mm = used.at("facet_distance_mm").get<double>();
+  } else {
+    sizes = tetmesh::default_sizes(load_ligament(config), config.tetmesh);
+  }
   sizes.cell_size_mm *= scale;
   sizes.facet_size_mm *= scale;
   sizes.facet_distance_mm *= scale;
@@ -129,7 +142,7 @@ void build_companion(const BuildConfig& config, const fs::path& dir, bool force,
   // put in its place when complete.
   const fs::path building = dir / (temporary_prefix() + std::to_string(::getpid()));
   try {
-    const BuildConfig coarse = coarser(config, scale);
+    const BuildConfig coarse = coarser(config, dir, scale);
     if (fs::exists(companion))
       fs::copy(companion, building,
                fs::copy_options::recursive | fs::copy_options::create_hard_links);
