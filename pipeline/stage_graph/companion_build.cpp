@@ -33,6 +33,11 @@ const std::set<std::string> kRemeshed = {"tetmesh", "fibers", "model"};
 void link_or_copy(const fs::path& from, const fs::path& to)
 {
   AtomicFile file(to);
+  // Already a link of it (reused from the old companion): rename() of a link onto a link of the
+  // same file does nothing, and would leave the temporary behind.
+  std::error_code not_there;
+  if (fs::equivalent(from, to, not_there))
+    return;
   std::error_code error;
   fs::create_hard_link(from, file.temp_path(), error);
   if (error)

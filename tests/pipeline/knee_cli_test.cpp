@@ -36,6 +36,16 @@ std::vector<std::string> cells(const std::string& line)
 
 /// The knee's config: ligaments A (x = -6) and B (x = 6) on the tibia, C (x = 13) on the fibula;
 /// `b_cell_size` sets B's own tet size.
+/// The files under `folder` named as a run's temporaries (".<name>.tmp-<pid>...").
+std::vector<std::string> temporaries_left(const fs::path& folder)
+{
+  std::vector<std::string> left;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder))
+    if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+      left.push_back(fs::relative(entry.path(), folder).string());
+  return left;
+}
+
 std::string knee_config(double b_cell_size)
 {
   std::ostringstream text;
@@ -135,6 +145,8 @@ TEST(KneeCli, BuildsEveryLigamentInItsFolderAndRebuildsOnlyTheOneChanged)
   ASSERT_EQ(run_ligsim(build + out.string()).exit_code, 0);
   for (const auto& [stage, status] : statuses(out))
     EXPECT_EQ(status, "reused") << stage;
+  // The companions' links to the reused stages were there already; nothing is left beside them.
+  EXPECT_EQ(temporaries_left(out), std::vector<std::string>());
 
   // Only B's tet size changed: B's tet mesh and what follows it rerun, nothing else.
   std::ofstream(inputs / "knee.toml") << knee_config(1.3);
