@@ -37,6 +37,10 @@ inline constexpr const char* knee_manifest_file = "knee.json";
 /// A ligament's folder keeps, in this folder, the same ligament meshed coarser: the companion
 /// model `ligsim flexion` estimates its discretisation error with.
 inline constexpr const char* companion_model_folder = "companion";
+/// The least ratio of the companion's element size to the model's that a two-mesh estimate
+/// stands on: below it the two meshes' difference is too close to their noise (Celik et al.,
+/// J Fluids Eng 2008;130:078001).
+inline constexpr double companion_min_size_ratio = 1.3;
 
 nlohmann::json to_json(const KneeManifest& manifest);
 /// Throws InputError naming `where` on a malformed document (a missing key, a ligament without

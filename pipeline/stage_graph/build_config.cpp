@@ -1,6 +1,7 @@
 #include "pipeline/stage_graph/build_config.hpp"
 
 #include "common/error.hpp"
+#include "common/knee_manifest.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
 #include "pipeline/stage_graph/ligament_defaults.hpp"
@@ -41,12 +42,10 @@ void read_stage_sections(const toml::table& table, const std::string& prefix, co
                [](auto& p, auto&& v) { visit_model(p, v); });
   read_section(&table, "error_estimate", prefix + "error_estimate", file, config.error_estimate,
                [](auto& p, auto&& v) { visit_error_estimate(p, v); });
-  // Below a ratio of 1.3 the two meshes' difference is too close to their noise (Celik et al.,
-  // J Fluids Eng 2008;130:078001).
   const double scale = config.error_estimate.mesh_scale;
-  if (scale != 0.0 && !(scale >= 1.3 && scale <= 4.0))
-    fail("{}: [{}error_estimate] mesh_scale must be 0 (no estimate) or from 1.3 to 4, got {}",
-         file.string(), prefix, scale);
+  if (scale != 0.0 && !(scale >= companion_min_size_ratio && scale <= 4.0))
+    fail("{}: [{}error_estimate] mesh_scale must be 0 (no estimate) or from {} to 4, got {}",
+         file.string(), prefix, companion_min_size_ratio, scale);
   read_section(&table, "flexion", prefix + "flexion", file, config.flexion,
                [](auto& p, auto&& v) { visit_flexion(p, v); });
   if (const toml::table* flexion = table_at(&table, "flexion"))

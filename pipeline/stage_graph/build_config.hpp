@@ -69,8 +69,9 @@ struct AnatomyInputs {
 };
 
 /// The companion model `ligsim flexion` estimates its discretisation error with: the same ligament
-/// meshed `mesh_scale` times coarser (cell and facet sizes and facet distance), built beside the
-/// model in its folder's companion/ (companion_build.hpp). 0: no companion, no estimate.
+/// meshed with elements `mesh_scale` times as large ((volume / tets)^(1/3); its cell and facet
+/// sizes and facet distance scaled until they are), built beside the model in its folder's
+/// companion/ (companion_build.hpp). 0: no companion, no estimate.
 struct ErrorEstimateParameters {
   double mesh_scale = 1.5;
 };

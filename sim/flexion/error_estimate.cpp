@@ -15,7 +15,6 @@ namespace {
 
 constexpr double kSafetyFactor = 3.0; ///< Roache's, for two meshes
 constexpr double kOrder = 2.0;
-constexpr double kReliableSizeRatio = 1.3;
 
 /// (volume / elements)^(1/3) of the coarse sweep over the fine one's.
 double size_ratio(const LigamentSetup& fine, const LigamentSetup& coarse)
@@ -117,13 +116,13 @@ std::vector<CompanionSweep> estimate_sweep_errors(const std::vector<LigamentMode
       report.note = fmt::format("the companion's elements are not larger than the model's (size "
                                 "ratio {:.2f}): no estimate",
                                 report.size_ratio);
-    else if (report.size_ratio < kReliableSizeRatio)
+    else if (report.size_ratio < companion_min_size_ratio)
       report.note = fmt::format(
           "the companion's elements are only {:.2f} times the model's, below the {} a two-mesh "
           "estimate needs (Celik et al. 2008): the estimate is not reliable; build with a "
           "larger [error_estimate] mesh_scale (a thin band keeps its tets across its thickness as "
           "the sizes grow)",
-          report.size_ratio, kReliableSizeRatio);
+          report.size_ratio, companion_min_size_ratio);
     else if (!coarse[c].result.success)
       report.note = "the companion stopped: " + coarse[c].result.failure;
     log_info(fmt::format("error estimate: {}: companion of {} tets (elements {:.2f} times the "
