@@ -10,7 +10,8 @@
 /// reach; r the ratio of the meshes' element sizes, (volume / elements)^(1/3). With r = 1.5 the
 /// estimate is at least the error for any observed order from 0.9 to 2.75, and at most five
 /// times it; a figure converging more slowly than first order (a mesh far from the asymptotic
-/// range) can be off by more than the estimate.
+/// range) can be off by more than the estimate, and so can a family whose meshes lock alike
+/// (linear tets in a thin band's bending: the companion shares the model's error).
 
 #include "sim/flexion/knee_sweep.hpp"
 
