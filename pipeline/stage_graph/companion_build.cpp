@@ -143,7 +143,8 @@ BuildConfig coarser(const BuildConfig& config, const fs::path& dir, double scale
   return companion;
 }
 
-/// The factor the previous build's companion took (its summary.json in `dir`), else `target`.
+/// The factor the previous build's companion took (its summary.json in `dir`), else `target`; a
+/// factor must exceed 1 (the search divides by its logarithm).
 double previous_scale(const fs::path& dir, double target)
 {
   std::ifstream file(dir / "summary.json");
@@ -153,7 +154,7 @@ double previous_scale(const fs::path& dir, double target)
       summary["results"].contains("companion") &&
       summary["results"]["companion"].contains("sizes_scaled_by"))
     scale = &summary["results"]["companion"]["sizes_scaled_by"];
-  if (scale == nullptr || !scale->is_number() || !(scale->get<double>() >= 1.0))
+  if (scale == nullptr || !scale->is_number() || !(scale->get<double>() > 1.0))
     return target;
   return scale->get<double>();
 }
