@@ -35,8 +35,30 @@ struct KneeContact::Bone {
   std::unique_ptr<BoneLevelSet> grid;
   std::optional<RigidMotion> motion;
   std::vector<bool> bound;                      ///< per node: attached to this bone
+  std::vector<bool> unchecked;                  ///< per node: left out of the penetration check
   std::unique_ptr<BonePenetration> penetration; ///< against the triangles, not the grid
 };
+
+namespace {
+
+/// The nodes the penetration check leaves out: those bound to the bone and, of 10-node tets, the
+/// middle of each edge with a bound end. A footprint's nodes may lie in the bone (the segmented
+/// ligament enters it), so the middle of an edge from one of them to a free node may too.
+std::vector<bool> left_out_of_penetration_check(const std::vector<bool>& bound,
+                                                const QuadraticTetrahedra& tet10)
+{
+  std::vector<bool> left_out = bound;
+  for (Eigen::Index e = 0; e < tet10.rows(); ++e)
+    for (int k = 0; k < 6; ++k) {
+      const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
+      if (bound[static_cast<std::size_t>(tet10(e, i))] ||
+          bound[static_cast<std::size_t>(tet10(e, j))])
+        left_out[static_cast<std::size_t>(tet10(e, 4 + k))] = true;
+    }
+  return left_out;
+}
+
+} // namespace
 
 KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& conditions,
                          const ContactConfig& config, const fs::path& cache_dir)
@@ -66,6 +88,7 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;
+    bone->unchecked = left_out_of_penetration_check(bone->bound, model.tet10);
     bone->penetration = std::make_unique<BonePenetration>(*triangles);
     m_figures.bones.push_back({name, cache_dir / (name + ".vdb"), bone->grid->figures(),
                                triangles->F.rows(), open_edges(*triangles)});
@@ -147,7 +170,7 @@ std::vector<BoneContact> KneeContact::measure(const Eigen::VectorXd& x, double t
     const Eigen::Isometry3d to_rest =
         bone.motion ? bone.motion->pose(t).inverse() : Eigen::Isometry3d::Identity();
     for (Eigen::Index n = 0; n < x.size() / 3; ++n) {
-      if (bone.bound[static_cast<std::size_t>(n)])
+      if (bone.unchecked[static_cast<std::size_t>(n)])
         continue;
       const Eigen::Vector3d p = to_rest * Eigen::Vector3d(x.segment<3>(3 * n));
       contact.penetration_mm = std::max(contact.penetration_mm, bone.penetration->depth_mm(p));

@@ -203,6 +203,32 @@ TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
   EXPECT_EQ(clear, body.rest_positions());
 }
 
+TEST(PenetrationCheck, LeavesOutTheMiddlesOfEdgesFromAFootprintInTheBoneButNoFreeCorner)
+{
+  // The tibial footprint (z = 0) 1.5 mm deep in the tibia: the middles of the edges from it to
+  // the next layer of corners (z = 1.25) lie in the bone with it; a layer of free corners
+  // (z = 2.5) in the bone is a penetration.
+  const KneeModel model = with_quadratic_tets(bar_knee());
+  const BoundaryConditions conditions =
+      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
+  ContactConfig config;
+  config.bones = {"tibia"};
+  const fs::path cache = fs::temp_directory_path() / "ligsim_penetration_check_cache";
+  Eigen::VectorXd x(3 * model.mesh.V.rows());
+  for (Eigen::Index n = 0; n < model.mesh.V.rows(); ++n)
+    x.segment<3>(3 * n) = model.mesh.V.row(n).transpose();
+  const auto deepest = [&](double bone_top_z) {
+    KneeModel in_bone = model;
+    in_bone.tibia = box({-4.0, -4.0, -10.0}, {8.0, 8.0, bone_top_z});
+    fs::remove_all(cache);
+    const KneeContact contact(in_bone, conditions, config, cache);
+    Eigen::VectorXd gap, pressure;
+    return contact.measure(x, 0.0, false, gap, pressure).at(0).penetration_mm;
+  };
+  EXPECT_EQ(deepest(1.5), 0.0);
+  EXPECT_NEAR(deepest(3.0), 0.5, 1e-6);
+}
+
 TEST(InitialOverlap, AQuadraticBarsMidEdgeNodesArePushedOutToo)
 {
   // A ridge of bone 0.3 mm into the bar's -x side between two layers of its corner nodes
