@@ -6,7 +6,6 @@
 #include "sim/contact/contact_surface.hpp"
 
 #include <Eigen/Geometry>
-#include <vtkPolyData.h>
 
 #include <algorithm>
 #include <map>
