@@ -44,6 +44,7 @@ struct BuildOptions {
   double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
   double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
   double in_situ = kUnset;
+  int order = 0; ///< 0: the config's
   std::string field_method, span;
   bool force = false, strict = false, no_images = false;
 };
@@ -127,6 +128,9 @@ void add_options(CLI::App* command, BuildOptions& o)
   command
       ->add_option("--facet-distance", o.facet_distance, "tet mesh max distance to the surface, mm")
       ->group(stages);
+  command->add_option("--order", o.order, "tet order: 1 linear, 2 10-node (default: the config's)")
+      ->check(CLI::IsMember({1, 2}))
+      ->group(stages);
   command->add_option("--radius-edge", o.radius_edge, "tet mesh radius-edge bound (default 2)")
       ->group(stages);
   command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
@@ -186,6 +190,8 @@ void apply_stage_flags(const BuildOptions& o, BuildConfig& config)
   set_if(o.facet_size, config.tetmesh.facet_size_mm);
   set_if(o.facet_distance, config.tetmesh.facet_distance_mm);
   set_if(o.radius_edge, config.tetmesh.radius_edge_ratio);
+  if (o.order != 0)
+    config.tetmesh.order = o.order;
   set_if(o.in_situ, config.model.in_situ_strain);
 }
 

@@ -127,9 +127,10 @@ inline std::vector<std::string> lines(const std::filesystem::path& file)
 }
 
 /// Builds the synthetic band of `shape` (a `ligsim synth band` folder) into a fresh folder
-/// `name`, with 0.4 mm voxels and the further config text `keys`.
+/// `name`, with 0.4 mm voxels, the further config text `keys` and the further build `flags`.
 inline std::filesystem::path build_band_model(const std::filesystem::path& shape,
-                                              const std::string& name, const std::string& keys)
+                                              const std::string& name, const std::string& keys,
+                                              const std::string& flags = "")
 {
   const std::filesystem::path out = fresh_folder(name);
   const std::filesystem::path config = scratch_root() / (name + ".toml");
@@ -137,7 +138,7 @@ inline std::filesystem::path build_band_model(const std::filesystem::path& shape
   const CliResult built =
       run_ligsim("build --config " + config.string() + " --surface " +
                  (shape / "surface.stl").string() + " --femur " + (shape / "femur.stl").string() +
-                 " --tibia " + (shape / "tibia.stl").string() + " --out " + out.string());
+                 " --tibia " + (shape / "tibia.stl").string() + " --out " + out.string() + flags);
   EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
   return out;
 }
