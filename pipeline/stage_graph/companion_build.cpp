@@ -4,11 +4,13 @@
 #include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
+#include "pipeline/stage_graph/companion_size_search.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -159,42 +161,33 @@ double previous_scale(const fs::path& dir, double target)
   return scale->get<double>();
 }
 
-/// How the companion's mesh came out: the factor its sizes took, and its elements' size over the
-/// model's.
+/// How the companion's mesh came out: its config, and the search that sized it.
 struct CompanionMesh {
   BuildConfig config;
-  double scale = NAN;
-  double size_ratio = NAN;
-  int meshings = 0;
+  SizeSearch search;
 };
 
-/// Meshes the companion in `building` (the tetmesh stage only) until its elements are `target`
-/// times the model's in size, within 5 %: a thin band keeps its tets across its thickness as the
-/// sizes grow (sizes 1.5 times the HRA MCL's 10-node mesh gave elements 1.12 times as large),
-/// while the estimate needs the ratio it assumes (Celik et al. 2008: at least 1.3). The first
-/// try takes the factor the previous build's companion took (an unchanged rebuild meshes nothing);
-/// each next one corrects the factor on the line through (1, 1) and the last try in log-log, at
-/// most four meshings in all, the factor at most 8. The last try stands.
-CompanionMesh mesh_to_size_ratio(const BuildConfig& config, const fs::path& dir,
-                                 const fs::path& building, double target, bool force,
-                                 RunSummary& own)
+/// Builds the companion model in `building` (the tetmesh, fibers and model stages) until its
+/// elements are `target` times the model's in size (search_size_factor; Celik et al. 2008 ask at
+/// least 1.3 of the estimate). Sizes too coarse for the ligament fail as a mesh or as a model (no
+/// node on a footprint) and are backed off from. The first try takes the factor the previous
+/// build's companion took, so an unchanged rebuild runs nothing.
+CompanionMesh build_to_size_ratio(const BuildConfig& config, const fs::path& dir,
+                                  const fs::path& building, double target, bool force,
+                                  RunSummary& own)
 {
-  constexpr int kMaxMeshings = 4;
-  constexpr double kMaxScale = 8.0;
-  constexpr double kTolerance = 0.05;
   const double model_size = element_size(dir);
   CompanionMesh mesh;
-  mesh.scale = previous_scale(dir, target);
-  for (mesh.meshings = 1;; ++mesh.meshings) {
-    mesh.config = coarser(config, dir, mesh.scale);
-    run_target(mesh.config, building, "tetmesh", force, own);
-    mesh.size_ratio = element_size(building) / model_size;
-    if (!(std::abs(std::log(mesh.size_ratio / target)) > std::log1p(kTolerance)) ||
-        mesh.meshings == kMaxMeshings || mesh.scale >= kMaxScale)
-      return mesh;
-    const double growth = std::log(mesh.size_ratio) / std::log(mesh.scale);
-    mesh.scale = std::min(std::exp(std::log(target) / std::max(growth, 0.1)), kMaxScale);
-  }
+  mesh.search = search_size_factor(previous_scale(dir, target), target, [&](double scale) {
+    mesh.config = coarser(config, dir, scale);
+    run_target(mesh.config, building, "model", force, own);
+    const bool reused = std::all_of(kRemeshed.begin(), kRemeshed.end(), [&](const auto& stage) {
+      const nlohmann::json& entry = own.stage(stage);
+      return entry.is_object() && entry.value("status", "") == "reused";
+    });
+    return SizeTry{element_size(building) / model_size, reused};
+  });
+  return mesh;
 }
 
 } // namespace
@@ -223,12 +216,7 @@ void build_companion(const BuildConfig& config, const fs::path& dir, bool force,
       fs::copy(companion, building,
                fs::copy_options::recursive | fs::copy_options::create_hard_links);
     share_upstream_stages(dir, building);
-    mesh = mesh_to_size_ratio(config, dir, building, scale, force, own);
-    RunSummary rest("build"); // the tetmesh stage, current now, is reported as the search ran it
-    run_target(mesh.config, building, "model", force, rest);
-    for (const auto& [stage, entry] : rest.json()["stages"].items())
-      if (stage != "tetmesh")
-        own.stage(stage) = entry;
+    mesh = build_to_size_ratio(config, dir, building, scale, force, own);
     put_in_place(building, companion);
     remove_temporaries(dir);
   } catch (const std::exception& error) { // CGAL's too: the model stands without a companion
@@ -247,13 +235,13 @@ void build_companion(const BuildConfig& config, const fs::path& dir, bool force,
   summary.results()["companion"] = {{"built", true},
                                     {"folder", companion_model_folder},
                                     {"mesh_scale", scale},
-                                    {"size_ratio", mesh.size_ratio},
-                                    {"sizes_scaled_by", mesh.scale},
-                                    {"meshings", mesh.meshings}};
-  if (mesh.size_ratio < companion_min_size_ratio)
+                                    {"size_ratio", mesh.search.size_ratio},
+                                    {"sizes_scaled_by", mesh.search.scale},
+                                    {"meshings", mesh.search.meshings}};
+  if (mesh.search.size_ratio < companion_min_size_ratio)
     log_info(fmt::format("companion: its elements are only {:.2f} times the model's after {} "
                          "meshings; ligsim flexion will say its estimate is not reliable",
-                         mesh.size_ratio, mesh.meshings));
+                         mesh.search.size_ratio, mesh.search.meshings));
 }
 
 } // namespace ligsim::pipeline
