@@ -104,14 +104,18 @@ void remove_companion(const fs::path& dir)
   remove_temporaries(dir);
 }
 
-/// The figures of the tetmesh stage's cache record in `dir`; an empty object without one.
-nlohmann::json tetmesh_figures(const fs::path& dir)
+/// The tetmesh stage's cache record in `dir`; an empty object without one.
+nlohmann::json tetmesh_record(const fs::path& dir)
 {
   std::ifstream record(stage_cache_file(dir, "tetmesh"));
   const nlohmann::json stage = nlohmann::json::parse(record, nullptr, false);
-  if (!stage.is_object())
-    return nlohmann::json::object();
-  return stage.value("figures", nlohmann::json::object());
+  return stage.is_object() ? stage : nlohmann::json::object();
+}
+
+/// The figures of the tetmesh stage's cache record in `dir`; an empty object without one.
+nlohmann::json tetmesh_figures(const fs::path& dir)
+{
+  return tetmesh_record(dir).value("figures", nlohmann::json::object());
 }
 
 /// The mean element size of the mesh of the tetmesh stage in `dir`, (volume / tets)^(1/3), as
@@ -145,20 +149,29 @@ BuildConfig coarser(const BuildConfig& config, const fs::path& dir, double scale
   return companion;
 }
 
-/// The factor the previous build's companion took (its summary.json in `dir`), else `target`; a
-/// factor must exceed 1 (the search divides by its logarithm).
+/// The cache key of the model's tetmesh stage in `dir`: what the companion's sizes derive from.
+std::string model_mesh_key(const fs::path& dir)
+{
+  return tetmesh_record(dir).value("key", "");
+}
+
+/// The factor the previous build's companion took (its summary.json in `dir`) where it was
+/// searched for the model's mesh as it is now, else `target`: a factor found for other sizes would
+/// start the search elsewhere than a fresh build does and could end elsewhere. A factor must
+/// exceed 1 (the search divides by its logarithm).
 double previous_scale(const fs::path& dir, double target)
 {
   std::ifstream file(dir / "summary.json");
   const nlohmann::json summary = nlohmann::json::parse(file, nullptr, false);
-  const nlohmann::json* scale = nullptr;
-  if (summary.is_object() && summary.contains("results") &&
-      summary["results"].contains("companion") &&
-      summary["results"]["companion"].contains("sizes_scaled_by"))
-    scale = &summary["results"]["companion"]["sizes_scaled_by"];
-  if (scale == nullptr || !scale->is_number() || !(scale->get<double>() > 1.0))
+  if (!summary.is_object() || !summary.contains("results") ||
+      !summary["results"].contains("companion") || !summary["results"]["companion"].is_object())
     return target;
-  return scale->get<double>();
+  const nlohmann::json& companion = summary["results"]["companion"];
+  const nlohmann::json scale = companion.value("sizes_scaled_by", nlohmann::json());
+  if (companion.value("model_mesh_key", "") != model_mesh_key(dir) || !scale.is_number() ||
+      !(scale.get<double>() > 1.0))
+    return target;
+  return scale.get<double>();
 }
 
 /// How the companion's mesh came out: its config, and the search that sized it.
@@ -237,7 +250,8 @@ void build_companion(const BuildConfig& config, const fs::path& dir, bool force,
                                     {"mesh_scale", scale},
                                     {"size_ratio", mesh.search.size_ratio},
                                     {"sizes_scaled_by", mesh.search.scale},
-                                    {"meshings", mesh.search.meshings}};
+                                    {"meshings", mesh.search.meshings},
+                                    {"model_mesh_key", model_mesh_key(dir)}};
   if (mesh.search.size_ratio < companion_min_size_ratio)
     log_info(fmt::format("companion: its elements are only {:.2f} times the model's after {} "
                          "meshings; ligsim flexion will say its estimate is not reliable",

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 using namespace ligsim::test;
 namespace fs = std::filesystem;
@@ -32,6 +33,13 @@ nlohmann::json sweep(const fs::path& model, const std::string& axis, const std::
   ligament["stages"] = summary["stages"];
   ligament["csv"] = lines(out / "flexion.csv");
   return ligament;
+}
+
+/// The whole content of `file`.
+std::string bytes(const fs::path& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 } // namespace
@@ -114,4 +122,33 @@ TEST(ErrorEstimateCli, ACompanionScaleBelowThirtyPercentIsRefused)
   EXPECT_NE(built.exit_code, 0);
   EXPECT_NE(built.stderr_text.find("mesh_scale must be 0"), std::string::npos) << built.stderr_text;
   EXPECT_FALSE(fs::exists(out / "model.vtu"));
+}
+
+TEST(ErrorEstimateCli, AfterOtherSizesTheCompanionIsTheOneAFreshBuildMakes)
+{
+  const fs::path shape = fresh_folder("estimate_sizes_shape");
+  ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
+  const auto build = [&](const fs::path& out, const std::string& sizes) {
+    const CliResult built =
+        run_ligsim("build --surface " + (shape / "surface.stl").string() + " --femur " +
+                   (shape / "femur.stl").string() + " --tibia " + (shape / "tibia.stl").string() +
+                   " " + sizes + " --out " + out.string());
+    EXPECT_EQ(built.exit_code, 0) << built.stderr_text;
+    return read_json(out / "summary.json")["results"]["companion"];
+  };
+  const std::string first = "--voxel 0.9 --cell-size 3 --facet-size 3 --facet-distance 0.6";
+  const std::string other = "--voxel 1 --cell-size 4 --facet-size 4 --facet-distance 1";
+  const fs::path fresh = fresh_folder("estimate_sizes_fresh");
+  const nlohmann::json made = build(fresh, first);
+  // Over a build of other sizes, the search for the first sizes' companion starts where a fresh
+  // build's does, not at the factor found for the other sizes, and ends where it ends.
+  const fs::path back = fresh_folder("estimate_sizes_back");
+  const nlohmann::json other_made = build(back, other);
+  const nlohmann::json remade = build(back, first);
+  ASSERT_TRUE(made["built"].get<bool>()) << made.dump();
+  ASSERT_TRUE(remade["built"].get<bool>()) << remade.dump();
+  EXPECT_NE(other_made["sizes_scaled_by"], made["sizes_scaled_by"]) << other_made.dump();
+  EXPECT_EQ(remade["sizes_scaled_by"], made["sizes_scaled_by"]) << remade.dump();
+  EXPECT_EQ(remade["meshings"], made["meshings"]) << remade.dump();
+  EXPECT_TRUE(bytes(back / "companion" / "model.vtu") == bytes(fresh / "companion" / "model.vtu"));
 }
