@@ -4,6 +4,7 @@
 #include "sim/contact/bone_level_set.hpp"
 #include "sim/contact/bone_penetration.hpp"
 #include "sim/contact/contact_surface.hpp"
+#include "sim/mesh/quadratic_tet.hpp"
 
 #include <Eigen/Geometry>
 
@@ -38,27 +39,6 @@ struct KneeContact::Bone {
   std::unique_ptr<BonePenetration> penetration; ///< against the triangles, not the grid
 };
 
-namespace {
-
-/// The nodes the penetration check leaves out: those bound to the bone and, of 10-node tets, the
-/// middle of each edge with a bound end. A footprint's nodes may lie in the bone (the segmented
-/// ligament enters it), so the middle of an edge from one of them to a free node may too.
-std::vector<bool> left_out_of_penetration_check(const std::vector<bool>& bound,
-                                                const QuadraticTetrahedra& tet10)
-{
-  std::vector<bool> left_out = bound;
-  for (Eigen::Index e = 0; e < tet10.rows(); ++e)
-    for (int k = 0; k < 6; ++k) {
-      const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
-      if (bound[static_cast<std::size_t>(tet10(e, i))] ||
-          bound[static_cast<std::size_t>(tet10(e, j))])
-        left_out[static_cast<std::size_t>(tet10(e, 4 + k))] = true;
-    }
-  return left_out;
-}
-
-} // namespace
-
 KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& conditions,
                          const ContactConfig& config, const fs::path& cache_dir)
 {
@@ -87,7 +67,10 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;
-    bone->unchecked = left_out_of_penetration_check(bone->bound, model.tet10);
+    // A footprint's nodes may lie in the bone (the segmented ligament enters it), and so may
+    // the middle of an edge from one of them to a free node: both are left out of the check.
+    bone->unchecked = bone->bound;
+    flag_mid_edge_nodes(model.tet10, bone->unchecked, FlaggedEnds::either);
     bone->penetration = std::make_unique<BonePenetration>(*triangles);
     m_figures.bones.push_back({name, cache_dir / (name + ".vdb"), bone->grid->figures(),
                                triangles->F.rows(), open_edges(*triangles)});

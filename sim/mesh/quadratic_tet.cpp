@@ -153,13 +153,15 @@ std::vector<QuadraticTetShape> compute_rest_shapes(const QuadraticTetMesh& mesh,
   return shapes;
 }
 
-void flag_mid_edge_nodes(const QuadraticTetrahedra& T, std::vector<bool>& flags)
+void flag_mid_edge_nodes(const QuadraticTetrahedra& T, std::vector<bool>& flags, FlaggedEnds ends)
 {
-  std::vector<bool> corners = flags;
+  const std::vector<bool> corners = flags;
   for (Eigen::Index e = 0; e < T.rows(); ++e)
     for (int k = 0; k < 6; ++k) {
       const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
-      if (corners[static_cast<std::size_t>(T(e, i))] && corners[static_cast<std::size_t>(T(e, j))])
+      const bool first = corners[static_cast<std::size_t>(T(e, i))];
+      const bool second = corners[static_cast<std::size_t>(T(e, j))];
+      if (ends == FlaggedEnds::both ? first && second : first || second)
         flags[static_cast<std::size_t>(T(e, 4 + k))] = true;
     }
 }

@@ -85,8 +85,13 @@ std::vector<QuadraticTetShape> compute_rest_shapes(const QuadraticTetMesh& mesh,
 /// it). The linear nodes keep their indices; the mid-edge nodes follow them.
 QuadraticTetMesh promote_to_quadratic(const TetMesh& linear);
 
-/// Sets the flag (one per node of `T`'s mesh) of each mid-edge node whose edge's two ends are
-/// flagged: bound to a bone where both ends are, the edge then lying in the footprint.
-void flag_mid_edge_nodes(const QuadraticTetrahedra& T, std::vector<bool>& flags);
+/// Which of an edge's ends must be flagged for its middle to be.
+enum class FlaggedEnds { both, either };
+
+/// Sets the flag (one per node of `T`'s mesh) of each mid-edge node whose edge has `ends`
+/// flagged: bound to a bone where both ends are (the edge then lies in the footprint); left out
+/// of the penetration check where either is (the edge may enter the bone with its bound end).
+void flag_mid_edge_nodes(const QuadraticTetrahedra& T, std::vector<bool>& flags,
+                         FlaggedEnds ends = FlaggedEnds::both);
 
 } // namespace ligsim::sim

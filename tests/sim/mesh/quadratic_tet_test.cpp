@@ -48,15 +48,22 @@ double rule_integral(const QuadratureRule& rule, const std::array<int, 4>& power
   return sum / 6.0;
 }
 
+/// The one 10-node tet with these corners (a row each), its mid-edge nodes at their middles.
+QuadraticTetMesh one_element(const Eigen::Matrix<double, 4, 3, Eigen::RowMajor>& corners)
+{
+  TetMesh linear;
+  linear.V = corners;
+  linear.T.resize(1, 4);
+  linear.T << 0, 1, 2, 3;
+  return promote_to_quadratic(linear);
+}
+
 /// A tet with unequal edges, its mid-edge nodes at the middles of its edges.
 QuadraticTetRows straight_element()
 {
-  TetMesh linear;
-  linear.V.resize(4, 3);
-  linear.V << 0.1, 0.0, 0.05, 1.1, 0.1, 0.0, 0.2, 0.9, 0.1, 0.15, 0.2, 1.2;
-  linear.T.resize(1, 4);
-  linear.T << 0, 1, 2, 3;
-  const QuadraticTetMesh mesh = promote_to_quadratic(linear);
+  Eigen::Matrix<double, 4, 3, Eigen::RowMajor> corners;
+  corners << 0.1, 0.0, 0.05, 1.1, 0.1, 0.0, 0.2, 0.9, 0.1, 0.15, 0.2, 1.2;
+  const QuadraticTetMesh mesh = one_element(corners);
   return quadratic_tet_nodes(mesh.T, 0, mesh.V.reshaped<Eigen::RowMajor>());
 }
 
@@ -225,4 +232,26 @@ TEST(PromoteToQuadratic, AddsOneSharedNodeAtTheMiddleOfEveryEdge)
     }
   }
   EXPECT_EQ(mid_nodes.size(), edges.size());
+}
+
+TEST(FlagMidEdgeNodes, FlagsAnEdgesMiddleWhereBothOrEitherOfItsEndsAre)
+{
+  Eigen::Matrix<double, 4, 3, Eigen::RowMajor> corners;
+  corners << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  const QuadraticTetMesh mesh = one_element(corners);
+  // Corners 0 and 1 flagged: edge 0-1 has both ends; edges 0-2, 0-3, 1-2, 1-3 one; 2-3 none.
+  std::vector<bool> start(static_cast<std::size_t>(mesh.V.rows()), false);
+  start[0] = start[1] = true;
+  std::vector<bool> both = start;
+  flag_mid_edge_nodes(mesh.T, both, FlaggedEnds::both);
+  std::vector<bool> either = start;
+  flag_mid_edge_nodes(mesh.T, either, FlaggedEnds::either);
+  for (int k = 0; k < 6; ++k) {
+    const auto [i, j] = kQuadraticTetEdges[static_cast<std::size_t>(k)];
+    const auto mid = static_cast<std::size_t>(mesh.T(0, 4 + k));
+    EXPECT_EQ(both[mid], start[i] && start[j]) << "edge " << i << "-" << j;
+    EXPECT_EQ(either[mid], start[i] || start[j]) << "edge " << i << "-" << j;
+  }
+  for (std::size_t n = 0; n < 4; ++n)
+    EXPECT_EQ(both[n], start[n]);
 }
