@@ -58,14 +58,18 @@ CurvedBoundary curve_boundary_to_surface(QuadraticTetMesh& mesh, const TriangleS
     const Eigen::RowVector3d middle = mesh.V.row(node);
     const Eigen::RowVector3d offset = query.closest(middle.transpose()).point.transpose() - middle;
     double share = 1.0;
+    double ratio = 0.0;
     for (int halving = 0; halving <= 4; ++halving, share *= 0.5) {
       mesh.V.row(node) = middle + share * offset;
-      if (worst_ratio(node) >= kMinCurvedJacobianRatio)
+      ratio = worst_ratio(node);
+      if (ratio >= kMinCurvedJacobianRatio)
         break;
     }
-    if (worst_ratio(node) < kMinCurvedJacobianRatio)
+    if (ratio < kMinCurvedJacobianRatio) { // no share of the offset keeps its elements sound
       share = 0.0;
-    mesh.V.row(node) = middle + share * offset;
+      mesh.V.row(node) = middle;
+      ratio = worst_ratio(node);
+    }
     if (share == 1.0)
       ++report.moved;
     else if (share > 0.0)
@@ -74,7 +78,7 @@ CurvedBoundary curve_boundary_to_surface(QuadraticTetMesh& mesh, const TriangleS
       ++report.left_straight;
     report.max_offset_mm = std::max(report.max_offset_mm, share * offset.norm());
     report.max_gap_mm = std::max(report.max_gap_mm, (1.0 - share) * offset.norm());
-    report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, worst_ratio(node));
+    report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, ratio);
   }
   return report;
 }
