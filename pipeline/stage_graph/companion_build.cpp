@@ -14,6 +14,7 @@
 #include <cmath>
 #include <exception>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
 #include <system_error>
@@ -193,10 +194,10 @@ CompanionMesh build_to_size_ratio(const BuildConfig& config, const fs::path& dir
   CompanionMesh mesh;
   mesh.search = search_size_factor(previous_scale(dir, target), target, [&](double scale) {
     mesh.config = coarser(config, dir, scale);
-    run_target(mesh.config, building, "model", force, own);
+    const std::map<std::string, StageStatus> statuses =
+        run_target(mesh.config, building, "model", force, own);
     const bool reused = std::all_of(kRemeshed.begin(), kRemeshed.end(), [&](const auto& stage) {
-      const nlohmann::json& entry = own.stage(stage);
-      return entry.is_object() && entry.value("status", "") == "reused";
+      return statuses.count(stage) && statuses.at(stage) == StageStatus::reused;
     });
     return SizeTry{element_size(building) / model_size, reused};
   });

@@ -87,9 +87,11 @@ fs::path stage_cache_file(const fs::path& dir, const std::string& stage)
   return dir / ".ligsim-cache" / (stage + ".json");
 }
 
-void run_target(const BuildConfig& config, const fs::path& dir, const std::string& target,
-                bool force, RunSummary& summary)
+std::map<std::string, StageStatus> run_target(const BuildConfig& config, const fs::path& dir,
+                                              const std::string& target, bool force,
+                                              RunSummary& summary)
 {
+  std::map<std::string, StageStatus> statuses;
   ensure_directory(dir);
   ensure_directory(dir / ".ligsim-cache");
   for (const Stage* stage : plan(target)) {
@@ -107,6 +109,7 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
       entry["wall_s"] = 0.0;
       entry["previous_wall_s"] = cached.value("wall_s", 0.0);
       entry["previous_peak_rss_mib"] = cached.value("peak_rss_mib", 0.0);
+      statuses[stage->name] = StageStatus::reused;
       continue;
     }
     log_info(fmt::format("{}: {}", stage->name, stage->description));
@@ -123,7 +126,9 @@ void run_target(const BuildConfig& config, const fs::path& dir, const std::strin
                                    {"wall_s", meter.wall_s()},
                                    {"peak_rss_mib", meter.peak_rss_mib()}};
     write_text_atomically(stage_cache_file(dir, stage->name), record.dump(2) + "\n");
+    statuses[stage->name] = StageStatus::ran;
   }
+  return statuses;
 }
 
 } // namespace ligsim::pipeline

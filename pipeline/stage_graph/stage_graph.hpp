@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -34,11 +35,16 @@ const std::vector<Stage>& build_stages();
 /// Where the record of `stage`'s last run in `dir` is kept (its key, figures and time).
 std::filesystem::path stage_cache_file(const std::filesystem::path& dir, const std::string& stage);
 
+/// What became of a stage in a run.
+enum class StageStatus { ran, reused };
+
 /// Runs `target` and the stages it needs, in order. A stage is reused (not rerun) when all its
 /// outputs exist and the key stored beside them (a hash of the stage's parameters, its user
 /// input files and its upstream outputs) is current; `force` reruns them all. Records every
-/// stage in `summary` with status "ran" or "reused".
-void run_target(const BuildConfig& config, const std::filesystem::path& dir,
-                const std::string& target, bool force, RunSummary& summary);
+/// stage in `summary` with status "ran" or "reused", and returns each stage's status by name.
+std::map<std::string, StageStatus> run_target(const BuildConfig& config,
+                                              const std::filesystem::path& dir,
+                                              const std::string& target, bool force,
+                                              RunSummary& summary);
 
 } // namespace ligsim::pipeline
