@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 
 namespace ligsim {
 
@@ -39,5 +40,12 @@ struct QuadraticTetMesh {
   Points V;
   QuadraticTetrahedra T;
 };
+
+/// A mesh's mean element size, (volume / elements)^(1/3): how the companion's size search and
+/// the flexion's error estimate compare two meshes of one ligament.
+inline double mean_element_size(double volume_mm3, double elements)
+{
+  return std::cbrt(volume_mm3 / elements);
+}
 
 } // namespace ligsim

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/knee_manifest.hpp"
+#include "common/mesh.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
 #include "pipeline/stage_graph/companion_size_search.hpp"
@@ -119,14 +120,14 @@ nlohmann::json tetmesh_figures(const fs::path& dir)
   return tetmesh_record(dir).value("figures", nlohmann::json::object());
 }
 
-/// The mean element size of the mesh of the tetmesh stage in `dir`, (volume / tets)^(1/3), as
-/// the flexion's estimate measures it; NaN without a record.
+/// The mean element size of the mesh of the tetmesh stage in `dir`; NaN without a record.
 double element_size(const fs::path& dir)
 {
   const nlohmann::json figures = tetmesh_figures(dir);
   if (!figures.contains("tets") || !figures.contains("total_volume_mm3"))
     return NAN;
-  return std::cbrt(figures.at("total_volume_mm3").get<double>() / figures.at("tets").get<double>());
+  return mean_element_size(figures.at("total_volume_mm3").get<double>(),
+                           figures.at("tets").get<double>());
 }
 
 /// `config` with the tetmesh sizes the model's tetmesh stage used (its record in `dir`, where the

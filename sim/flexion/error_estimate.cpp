@@ -1,6 +1,7 @@
 #include "sim/flexion/error_estimate.hpp"
 
 #include "common/knee_manifest.hpp"
+#include "common/mesh.hpp"
 #include "common/progress.hpp"
 
 #include <fmt/format.h>
@@ -16,12 +17,11 @@ namespace {
 constexpr double kSafetyFactor = 3.0; ///< Roache's, for two meshes
 constexpr double kOrder = 2.0;
 
-/// (volume / elements)^(1/3) of the coarse sweep over the fine one's.
+/// The mean element size of the coarse sweep over the fine one's.
 double size_ratio(const LigamentSetup& fine, const LigamentSetup& coarse)
 {
-  const double fine_size = fine.rest_volume_mm3 / static_cast<double>(fine.tets);
-  const double coarse_size = coarse.rest_volume_mm3 / static_cast<double>(coarse.tets);
-  return std::cbrt(coarse_size / fine_size);
+  return mean_element_size(coarse.rest_volume_mm3, static_cast<double>(coarse.tets)) /
+         mean_element_size(fine.rest_volume_mm3, static_cast<double>(fine.tets));
 }
 
 /// Each angle of `fine` that `coarse` reached, converged, gets its error.
