@@ -3,8 +3,9 @@
 ///
 /// Default sizes (any size parameter <= 0) come from the surface's characteristic thickness
 /// h = 2 V / A (enclosed volume V, area A): for a thin band h is its thickness, for a long
-/// round cylinder h is its radius. Then cell_size = facet_size = h / 2 and
-/// facet_distance = h / 20 (see default_sizes()).
+/// round cylinder h is its radius. Then cell_size = facet_size = h / 2 for linear tets and
+/// kQuadraticSizeOverThickness h for 10-node ones, and facet_distance = h / 20 (see
+/// default_sizes()).
 ///
 /// Steps: Mesh_3 Delaunay refinement; then, if asked, rounds of perturbation each followed by
 /// a refinement (perturbation moves surface vertices and can break the facet criteria) until a
@@ -16,9 +17,13 @@
 
 namespace ligsim::tetmesh {
 
+/// The default cell and facet size of 10-node tets over the surface's thickness h.
+inline constexpr double kQuadraticSizeOverThickness = 1.7;
+
 struct Parameters {
-  double cell_size_mm = 0;  ///< max tet circumradius; <= 0: h / 2
-  double facet_size_mm = 0; ///< max radius of a boundary facet's surface Delaunay ball; <= 0: h / 2
+  double cell_size_mm = 0; ///< max tet circumradius; <= 0: h / 2, or 1.7 h for 10-node tets
+  /// max radius of a boundary facet's surface Delaunay ball; <= 0: as the cell size
+  double facet_size_mm = 0;
   double facet_distance_mm = 0; ///< max distance facet circumcentre to input surface; <= 0: h / 20
   double facet_angle_deg = 25;  ///< min angle of a boundary facet
   double radius_edge_ratio = 2; ///< max tet circumradius / shortest edge during refinement

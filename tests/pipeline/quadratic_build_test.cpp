@@ -24,11 +24,20 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Builds the band (made once in `shape`) with tets of `order` into a fresh folder: a config of
-/// 10-node tets, which `--order 1` overrides.
-fs::path build_band(const fs::path& shape, int order)
+/// 10-node tets, which `--order 1` overrides; `flags` add to the command line.
+fs::path build_band(const fs::path& shape, int order, const std::string& flags = "")
 {
   return build_band_model(shape, fmt::format("quadratic_band_order_{}", order),
-                          "[tetmesh]\norder = 2\n", order == 1 ? " --order 1" : "");
+                          "[tetmesh]\norder = 2\n", (order == 1 ? " --order 1" : "") + flags);
+}
+
+/// The flags that give a build the cell and facet sizes the tetmesh stage of `model` used.
+std::string same_sizes_as(const fs::path& model)
+{
+  const nlohmann::json used =
+      read_json(model / "summary.json")["stages"]["tetmesh"]["figures"]["used"];
+  return fmt::format(" --cell-size {} --facet-size {}", used["cell_size_mm"].get<double>(),
+                     used["facet_size_mm"].get<double>());
 }
 
 /// The femur force at each angle of a sweep of `model` to 30 degrees.
@@ -58,7 +67,9 @@ TEST(QuadraticBuild, TheBandOfTenNodeTetsIsCurvedCarriesFibersAtItsPointsAndPull
 {
   const fs::path shape = fresh_folder("quadratic_band_shape");
   ASSERT_EQ(run_ligsim("synth band --out " + shape.string()).exit_code, 0);
-  const fs::path linear = build_band(shape, 1), quadratic = build_band(shape, 2);
+  // The 10-node band on the linear one's corners: its own default sizes are coarser.
+  const fs::path linear = build_band(shape, 1);
+  const fs::path quadratic = build_band(shape, 2, same_sizes_as(linear));
 
   const nlohmann::json curved =
       read_json(quadratic / "summary.json")["stages"]["tetmesh"]["figures"]["quadratic"];

@@ -130,6 +130,14 @@ TEST(Tetmesh, DefaultSizesFollowTheThicknessRule)
   Parameters partly;
   partly.facet_size_mm = 0.8;
   EXPECT_EQ(default_sizes(surface, partly).facet_size_mm, 0.8); // given sizes are kept
+
+  // 10-node tets default to 1.7 times the thickness, the surface held as close as linear tets'.
+  Parameters quadratic;
+  quadratic.order = 2;
+  const Parameters coarse = default_sizes(surface, quadratic);
+  EXPECT_NEAR(coarse.cell_size_mm, 1.7 * thickness, 0.01 * 1.7 * thickness);
+  EXPECT_NEAR(coarse.facet_size_mm, 1.7 * thickness, 0.01 * 1.7 * thickness);
+  EXPECT_EQ(coarse.facet_distance_mm, resolved.facet_distance_mm);
 }
 
 TEST(Tetmesh, SameSeedSameMeshOtherSeedOtherMesh)
