@@ -51,6 +51,26 @@ double grid_convergence_index(double fine, double coarse, double size_ratio)
   return kSafetyFactor * std::abs(fine - coarse) / (std::pow(size_ratio, kOrder) - 1.0);
 }
 
+std::string locking_warning(const std::vector<AngleResult>& angles, bool linear_tets)
+{
+  const AngleResult* worst = nullptr;
+  double worst_share = 0.0;
+  for (const AngleResult& angle : angles) {
+    const double share = angle.error.femur_force_n / angle.femur_force_n.norm();
+    if (share > worst_share) { // NaN (no estimate, or no force) never is
+      worst_share = share;
+      worst = &angle;
+    }
+  }
+  if (!linear_tets || worst == nullptr || !(worst_share > kLockingErrorShare))
+    return "";
+  return fmt::format(
+      "the femur force's estimated error is {:.0f} % of the force at {:g} degrees: linear tets "
+      "lock as a thin band bends, and their figures can lie far above the model's answer; build "
+      "it with --order 2 (10-node tets, docs/labelmap.md)",
+      100.0 * worst_share, worst->angle_deg);
+}
+
 std::optional<LigamentModel> load_companion(const LigamentModel& ligament)
 {
   const fs::path folder = ligament.folder / companion_model_folder;
@@ -131,6 +151,12 @@ std::vector<CompanionSweep> estimate_sweep_errors(const std::vector<LigamentMode
                          fine.result.angles.size()));
     if (!report.note.empty())
       log_info(fmt::format("warning: error estimate: {}: {}", report.ligament, report.note));
+    // Frames run 10-node models as linear tets: the remedy is the quasi-static sweep's.
+    const bool linear = ligaments[owner[c]].model.tet10.rows() == 0;
+    const std::string locking =
+        locking_warning(fine.result.angles, linear && settings.mode == FlexionMode::quasi_static);
+    if (!locking.empty())
+      log_info(fmt::format("warning: error estimate: {}: {}", report.ligament, locking));
   }
   return reports;
 }

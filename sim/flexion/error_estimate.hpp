@@ -37,6 +37,14 @@ struct CompanionSweep {
 /// Roache's GCI of a figure from the fine and coarse meshes' values and their size ratio r > 1.
 double grid_convergence_index(double fine, double coarse, double size_ratio);
 
+/// Above this share of the femur force, linear tets' error estimate is taken as locking's mark.
+inline constexpr double kLockingErrorShare = 0.25;
+
+/// What to say when a model of linear tets has an estimated femur-force error above
+/// kLockingErrorShare of the force at some angle (`angles` with their errors): the largest share,
+/// its angle and the remedy, 10-node tets. Empty for 10-node tets or smaller estimates.
+std::string locking_warning(const std::vector<AngleResult>& angles, bool linear_tets);
+
 /// The companion of `ligament` (its folder's companion/ model, with the ligament's bones and
 /// anatomy), none when the folder has none. Throws InputError as load_knee_model does.
 std::optional<LigamentModel> load_companion(const LigamentModel& ligament);
