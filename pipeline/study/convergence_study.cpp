@@ -73,8 +73,9 @@ bool is_mesh_family(const std::string& family)
   return family.rfind("quasi-static, mesh", 0) == 0;
 }
 
-/// The config's sizes times the scales; a size the config leaves at 0 starts from the build's
-/// default (mesh h/2, facet distance h/20, voxel h/8).
+/// The config's sizes times the scales; a size the config leaves at 0 starts from the linear
+/// build's default (mesh h/2, facet distance h/20, voxel h/8), for 10-node tets too, so that the
+/// two orders' ladders share their sizes (a 10-node build's own default is 1.7 h).
 pipeline::BuildConfig scaled_config(const pipeline::BuildConfig& base, double thickness_mm,
                                     double mesh_scale, double voxel_scale, int order)
 {

@@ -53,6 +53,8 @@ double grid_convergence_index(double fine, double coarse, double size_ratio)
 
 std::string locking_warning(const std::vector<AngleResult>& angles, bool linear_tets)
 {
+  if (!linear_tets)
+    return "";
   const AngleResult* worst = nullptr;
   double worst_share = 0.0;
   for (const AngleResult& angle : angles) {
@@ -62,7 +64,7 @@ std::string locking_warning(const std::vector<AngleResult>& angles, bool linear_
       worst = &angle;
     }
   }
-  if (!linear_tets || worst == nullptr || !(worst_share > kLockingErrorShare))
+  if (worst == nullptr || !(worst_share > kLockingErrorShare))
     return "";
   return fmt::format(
       "the femur force's estimated error is {:.0f} % of the force at {:g} degrees: linear tets "
