@@ -148,7 +148,8 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   if (settings.in_situ_strain != 0.0)
     notes.push_back(fmt::format(
         "In-situ strain {}: the fiber term alone is pre-stretched by {} along the fiber "
-        "(isochoric in-situ stretch of FEBio's uncoupled prestrain material), the ground "
+        "(isochoric in-situ stretch of FEBio's uncoupled prestrain material, ramped from 1 over "
+        "the first step by its load curve), the ground "
         "substance is not; together the mixture is trans iso Mooney-Rivlin with |a| = 1 + "
         "strain, as in ligsim. FEBio reports no strain energy for its prestrain material: its "
         "logged sed then holds the ground substance and volume terms only.",

@@ -107,8 +107,9 @@ TEST(FebWriter, WritesWellFormedXmlWithTheModelsCounts)
   const std::string femur_set = text_of(child(mesh, "NodeSet", "name", "femur_attachment"));
   EXPECT_EQ(numbers(femur_set.c_str()).size(), model.femur_nodes.size());
   EXPECT_EQ(text_of(child(child(root, "Control"), "time_steps")), "3");
-  // The must points and the femur's six degrees of freedom; the tibia is fixed.
-  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
+  // The must points, the in-situ stretch's ramp and the femur's six degrees of freedom; the
+  // tibia is fixed.
+  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 8);
   EXPECT_EQ(count(child(root, "Rigid"), "rigid_bc"), 7);
   EXPECT_NE(child(child(root, "Rigid"), "rigid_bc", "type", "rigid_fixed"), nullptr);
   EXPECT_EQ(child(root, "Contact"), nullptr);
@@ -190,10 +191,14 @@ TEST(FebWriter, APathThatStartsOffTheBuiltPoseSettlesThereFirst)
   const auto root = parsed(feb_text(problem));
   ASSERT_NE(root, nullptr);
   EXPECT_EQ(text_of(child(child(root, "Control"), "time_steps")), "3");
-  // The femur's turn about x (its rotation vector's x component, Ru, curve 5): 0 at times 0 and 1,
-  // then the two angles.
-  vtkXMLDataElement* curve =
-      child(child(child(root, "LoadData"), "load_controller", "id", "5"), "points");
+  // The femur's turn about x (its rotation vector's x component, Ru): 0 at times 0 and 1, then
+  // the two angles.
+  vtkXMLDataElement* turn =
+      child(child(child(root, "Rigid"), "rigid_bc", "name", "femur_Ru"), "value");
+  ASSERT_NE(turn, nullptr);
+  ASSERT_NE(turn->GetAttribute("lc"), nullptr);
+  vtkXMLDataElement* curve = child(
+      child(child(root, "LoadData"), "load_controller", "id", turn->GetAttribute("lc")), "points");
   ASSERT_NE(curve, nullptr);
   ASSERT_EQ(count(curve, "pt"), 4);
   const std::vector<double> at_one = numbers(text_of(curve->GetNestedElement(1)).c_str());
@@ -227,6 +232,20 @@ TEST(FebWriter, MaterialFollowsTheSettings)
   vtkXMLDataElement* stretch = child(prestrained, "prestrain", "type", "in-situ stretch");
   EXPECT_EQ(std::stod(text_of(child(stretch, "stretch"))), 1.04);
   EXPECT_EQ(text_of(child(stretch, "isochoric")), "1");
+  // The stretch is ramped over the first step by its load curve: 1.04 x (1 / 1.04) = 1 at time
+  // 0, the full 1.04 at the end of each step.
+  const char* ramp_id = child(stretch, "stretch")->GetAttribute("lc");
+  ASSERT_NE(ramp_id, nullptr);
+  vtkXMLDataElement* ramp =
+      child(child(child(root, "LoadData"), "load_controller", "id", ramp_id), "points");
+  ASSERT_NE(ramp, nullptr);
+  ASSERT_EQ(count(ramp, "pt"), 4);
+  const std::vector<double> at_zero = numbers(text_of(ramp->GetNestedElement(0)).c_str());
+  EXPECT_EQ(at_zero[0], 0.0);
+  EXPECT_NEAR(1.04 * at_zero[1], 1.0, 1e-15);
+  for (int k = 1; k <= 3; ++k)
+    EXPECT_EQ(numbers(text_of(ramp->GetNestedElement(k)).c_str()),
+              (std::vector<double>{static_cast<double>(k), 1.0}));
   EXPECT_NE(child(prestrained, "elastic", "type", "uncoupled fiber-exp-linear"), nullptr);
   // The ground substance is not pre-stretched.
   EXPECT_NE(child(ligament, "solid", "type", "Mooney-Rivlin"), nullptr);
@@ -287,8 +306,9 @@ TEST(FebWriter, ContactWithoutOverlapHasThePenaltyAndNoOffset)
     EXPECT_EQ(text_of(child(pair, "auto_penalty")), "1");
     EXPECT_EQ(child(pair, "offset"), nullptr);
   }
-  // The must points and the femur's six degrees of freedom, no ramp.
-  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 7);
+  // The must points, the in-situ stretch's ramp and the femur's six degrees of freedom, no
+  // contact ramp.
+  EXPECT_EQ(count(child(root, "LoadData"), "load_controller"), 8);
   EXPECT_NE(feb_text(problem).find("automatic penalty scaled by 3.5"), std::string::npos);
   EXPECT_NE(feb_text(problem).find("does not overlap the bones"), std::string::npos);
   // Newton on the symmetrized contact stiffness converges linearly: no displacement criterion.
