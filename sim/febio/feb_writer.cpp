@@ -5,9 +5,13 @@
 #include "sim/contact/contact_surface.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
+#include <utility>
 
 namespace ligsim::sim {
 
@@ -65,9 +69,6 @@ void validate(const FebProblem& problem)
       fail("FEBio export: the 10-node tets are not the ligament's tets with mid-edge nodes");
     if (problem.ligament_tet10.minCoeff() < 0 || problem.ligament_tet10.maxCoeff() >= nodes)
       fail("FEBio export: a 10-node tet names a node out of the ligament's {}", nodes);
-    if (problem.contact)
-      fail("FEBio export: contact on 10-node tets is not written (FEBio needs their 6-node "
-           "faces)");
   }
   if (problem.fiber_directions.rows() != tets)
     fail("FEBio export: {} fiber directions for {} tets", problem.fiber_directions.rows(), tets);
@@ -229,6 +230,31 @@ Triangles free_faces(const FebProblem& problem)
   return faces;
 }
 
+/// The contact facets of `faces`, 1-based: "tri3" of the corners, or with 10-node tets "tri6", the
+/// corners then the mid-edge nodes of edges (0,1), (1,2), (2,0) (FEBio's order), so that the
+/// facets are the faces of the quadratic elements FEBio finds them on.
+std::pair<std::string, std::vector<std::vector<int>>> contact_facets(const FebProblem& problem,
+                                                                     const Triangles& faces)
+{
+  std::map<std::pair<int, int>, int> middle; // (smaller, larger) corner -> mid-edge node
+  const QuadraticTetrahedra& tet10 = problem.ligament_tet10;
+  for (Eigen::Index t = 0; t < tet10.rows(); ++t)
+    for (std::size_t e = 0; e < kQuadraticTetEdges.size(); ++e) {
+      const int a = tet10(t, kQuadraticTetEdges[e][0]);
+      const int b = tet10(t, kQuadraticTetEdges[e][1]);
+      middle[std::minmax(a, b)] = tet10(t, 4 + static_cast<Eigen::Index>(e));
+    }
+  std::vector<std::vector<int>> facets;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    std::vector<int> nodes{faces(f, 0) + 1, faces(f, 1) + 1, faces(f, 2) + 1};
+    if (tet10.rows() > 0)
+      for (int c = 0; c < 3; ++c)
+        nodes.push_back(middle.at(std::minmax(faces(f, c), faces(f, (c + 1) % 3))) + 1);
+    facets.push_back(nodes);
+  }
+  return {tet10.rows() > 0 ? "tri6" : "tri3", facets};
+}
+
 void write_mesh(Buffer& out, const FebProblem& problem)
 {
   const auto it = std::back_inserter(out);
@@ -292,11 +318,11 @@ void write_mesh(Buffer& out, const FebProblem& problem)
     fmt::format_to(it, "\n    </NodeSet>\n");
   }
   if (problem.contact) {
-    const Triangles faces = free_faces(problem);
+    const auto [type, facets] = contact_facets(problem, free_faces(problem));
     fmt::format_to(it, "    <Surface name=\"ligament_free_surface\">\n");
-    for (Eigen::Index f = 0; f < faces.rows(); ++f)
-      fmt::format_to(it, "      <tri3 id=\"{}\">{},{},{}</tri3>\n", f + 1, faces(f, 0) + 1,
-                     faces(f, 1) + 1, faces(f, 2) + 1);
+    for (std::size_t f = 0; f < facets.size(); ++f)
+      fmt::format_to(it, "      <{0} id=\"{1}\">{2}</{0}>\n", type, f + 1,
+                     fmt::join(facets[f], ","));
     fmt::format_to(it, "    </Surface>\n");
     for (std::size_t b = 0; b < problem.bones.size(); ++b) {
       const FebRigidBody& bone = problem.bones[b];

@@ -475,7 +475,35 @@ TEST(FebWriter, QuadraticTetsAreWrittenAsTet10G4WithTheirTenNodes)
   FebProblem refused = problem;
   refused.ligament_tet10(0, 4) = refused.ligament_tet10(0, 5) = -1;
   EXPECT_THROW(feb_text(refused), InputError);
-  refused = problem;
-  refused.contact = true; // FEBio would need the tets' 6-node faces
-  EXPECT_THROW(feb_text(refused), InputError);
+}
+
+TEST(FebWriter, ContactOnTenNodeTetsSlidesOnTheirSixNodeFaces)
+{
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  FebProblem problem = bar_problem(settings);
+  const QuadraticTetMesh quadratic = promote_to_quadratic(problem.ligament);
+  problem.ligament.V = quadratic.V;
+  problem.ligament_tet10 = quadratic.T;
+  const auto root = parsed(feb_text(problem));
+  vtkXMLDataElement* surface =
+      child(child(root, "Mesh"), "Surface", "name", "ligament_free_surface");
+  ASSERT_NE(surface, nullptr);
+  ASSERT_GT(surface->GetNumberOfNestedElements(), 0);
+  for (int f = 0; f < surface->GetNumberOfNestedElements(); ++f) {
+    vtkXMLDataElement* facet = surface->GetNestedElement(f);
+    ASSERT_STREQ(facet->GetName(), "tri6");
+    const std::vector<double> ids = numbers(facet->GetCharacterData());
+    ASSERT_EQ(ids.size(), 6u);
+    std::vector<int> nodes;
+    for (double id : ids)
+      nodes.push_back(static_cast<int>(id) - 1);
+    // Nodes 4-6 are the middles of edges 1-2, 2-3, 3-1 (the promoted tets are straight).
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d middle =
+          0.5 * (quadratic.V.row(nodes[c]) + quadratic.V.row(nodes[(c + 1) % 3])).transpose();
+      EXPECT_LT((quadratic.V.row(nodes[3 + c]).transpose() - middle).norm(), 1e-12)
+          << "facet " << f + 1 << ", node " << 4 + c;
+    }
+  }
 }
