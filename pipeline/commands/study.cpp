@@ -117,6 +117,7 @@ void check_ladder(const std::vector<double>& values, const std::string& name, bo
 struct ConvergenceOptions {
   StudyOptions study;
   study::ConvergenceLadder ladder;
+  bool mesh_only = false;
 };
 
 /// What every study job does around its own work: the display for the PNG plots (before
@@ -150,6 +151,11 @@ void run_convergence(const ConvergenceOptions& o)
   inputs.flexion = flexion_settings(o.study);
   inputs.model = study_model(o.study, inputs.flexion, "study convergence");
   inputs.ladder = o.ladder;
+  if (o.mesh_only) {
+    inputs.ladder.voxel_scales.clear();
+    inputs.ladder.time_steps_s.clear();
+    inputs.ladder.interactive_mesh_scales.clear();
+  }
   inputs.out = o.study.out;
   inputs.png = !o.study.no_png;
   check_ladder(inputs.ladder.mesh_scales, "--mesh-scales", false);
@@ -298,6 +304,8 @@ void add_study_command(CLI::App& app)
                    "tets); the finest mesh of the highest is the reference (default: the "
                    "config's)")
       ->delimiter(',');
+  convergence->add_flag("--mesh-only", convergence_options->mesh_only,
+                        "the mesh ladder alone: no voxel or interactive runs");
   convergence->callback([convergence_options] { run_convergence(*convergence_options); });
 
   auto sensitivity_options = std::make_shared<SensitivityOptions>();

@@ -46,8 +46,8 @@ struct Run {
   BuiltLigament build;
   FlexionFigures flexion;
   std::string failure; ///< empty when the run reached every angle
-  std::array<double, 4> worst_vs_reference{};
-  std::array<double, 4> worst_vs_family{};
+  QuantityValues worst_vs_reference{};
+  QuantityValues worst_vs_family{};
   double energy_error_vs_extrapolated = kNaN;
   std::vector<AngleErrors> errors;
 };
@@ -188,13 +188,14 @@ void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out
   std::string csv = "ligament,family,mesh_scale,voxel_scale,mode,time_step_s,tets,build_s,"
                     "build_peak_mib,solve_s,solve_peak_mib,frames,s_per_frame,frames_per_second,"
                     "energy_error,mean_strain_error,p95_strain_error,femur_force_error,"
-                    "energy_error_vs_family,mean_strain_error_vs_family,"
+                    "regional_strain_error,energy_error_vs_family,mean_strain_error_vs_family,"
                     "p95_strain_error_vs_family,femur_force_error_vs_family,"
-                    "energy_error_vs_extrapolated,failure\n";
+                    "regional_strain_error_vs_family,energy_error_vs_extrapolated,failure\n";
   std::string angles_csv = "ligament,family,mesh_scale,voxel_scale,time_step_s,tets,angle_deg,"
                            "strain_energy_mj,mean_fiber_stretch,p95_fiber_stretch,"
                            "max_fiber_stretch,femur_force_n,energy_error,mean_strain_error,"
-                           "p95_strain_error,femur_force_error\n";
+                           "p95_strain_error,femur_force_error,regional_fiber_stretch,"
+                           "regional_strain_error\n";
   std::string md = fmt::format(
       "Errors: the largest over the angles, relative to the reference ({}); fiber errors "
       "compare strains (stretch - 1), the force compares vectors. Time per frame: one implicit "
@@ -202,9 +203,10 @@ void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out
       "(0.067 s per frame) for 5,911 tets. No contact (the ligament may pass through the "
       "bones).\n\n"
       "| ligament | family | tets | voxel scale | dt s | build s | solve s | s per frame | peak "
-      "MiB | energy | mean strain | p95 strain | femur force | energy vs Richardson |\n"
+      "MiB | energy | mean strain | p95 strain | femur force | regional peak | energy vs "
+      "Richardson |\n"
       "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | "
-      "---: |\n",
+      "---: | ---: |\n",
       reference);
   for (const std::vector<Run>& ligament_runs : runs)
     for (const Run& run : ligament_runs) {
@@ -213,36 +215,36 @@ void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out
       const auto& f = run.worst_vs_family;
       csv += fmt::format(
           "{},{},{},{},{},{},{},{:.3f},{:.1f},{:.3f},{:.1f},{},{:.5g},{:.4g},{:.6g},{:.6g},{:.6g},"
-          "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
+          "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n",
           csv_quoted(run.ligament), csv_quoted(run.spec.family), run.spec.mesh_scale,
           run.spec.voxel_scale, interactive ? "interactive" : "static", run.spec.time_step_s,
           run.flexion.tets, run.build.build_s, run.build.peak_rss_mib, run.flexion.solve_s,
           run.flexion.peak_rss_mib, run.flexion.frames, seconds_per_frame(run),
-          run.flexion.frames_per_second, r[0], r[1], r[2], r[3], f[0], f[1], f[2], f[3],
+          run.flexion.frames_per_second, r[0], r[1], r[2], r[3], r[4], f[0], f[1], f[2], f[3], f[4],
           run.energy_error_vs_extrapolated, csv_quoted(run.failure));
       for (const AngleFigures& a : run.flexion.angles) {
-        std::array<double, 4> e;
+        QuantityValues e;
         e.fill(kNaN);
         for (const AngleErrors& row : run.errors)
           if (std::abs(row.angle_deg - a.angle_deg) < 1e-9)
             e = row.error;
-        angles_csv +=
-            fmt::format("{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                        "{:.6g},{:.6g}\n",
-                        csv_quoted(run.ligament), csv_quoted(run.spec.family), run.spec.mesh_scale,
-                        run.spec.voxel_scale, run.spec.time_step_s, run.flexion.tets, a.angle_deg,
-                        a.strain_energy_mj, a.mean_fiber_stretch, a.p95_fiber_stretch,
-                        a.max_fiber_stretch, a.femur_force_n.norm(), e[0], e[1], e[2], e[3]);
+        angles_csv += fmt::format(
+            "{},{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+            "{:.6g},{:.6g},{:.6g},{:.6g}\n",
+            csv_quoted(run.ligament), csv_quoted(run.spec.family), run.spec.mesh_scale,
+            run.spec.voxel_scale, run.spec.time_step_s, run.flexion.tets, a.angle_deg,
+            a.strain_energy_mj, a.mean_fiber_stretch, a.p95_fiber_stretch, a.max_fiber_stretch,
+            a.femur_force_n.norm(), e[0], e[1], e[2], e[3], a.regional_fiber_stretch, e[4]);
       }
       md += fmt::format(
           "| {} | {} | {} | {:g} | {} | {:.2f} | {:.2f} | {:.4f} | {:.0f} | {} | {} | {} | "
-          "{} | {} |\n",
+          "{} | {} | {} |\n",
           run.ligament, run.spec.family + (run.failure.empty() ? "" : " (failed)"),
           run.flexion.tets, run.spec.voxel_scale,
           interactive ? fmt::format("{:g}", run.spec.time_step_s) : "", run.build.build_s,
           run.flexion.solve_s, seconds_per_frame(run),
           std::max(run.build.peak_rss_mib, run.flexion.peak_rss_mib), percent(r[0]), percent(r[1]),
-          percent(r[2]), percent(r[3]), percent(run.energy_error_vs_extrapolated));
+          percent(r[2]), percent(r[3]), percent(r[4]), percent(run.energy_error_vs_extrapolated));
     }
   md += fmt::format("\nWithin {:g} % of the reference's femur force at every angle, in the least "
                     "solve time:\n\n",
@@ -263,14 +265,15 @@ void write_tables(const std::vector<std::vector<Run>>& runs, const fs::path& out
   write_text_atomically(out / "convergence.md", md);
 }
 
-/// One curve per family (per ligament and family in a knee).
-void write_convergence_plot(const std::vector<std::vector<Run>>& runs, const fs::path& out,
-                            bool png)
+/// The error of `quantity` against run time, one curve per family (per ligament and family in a
+/// knee), into `<stem>.svg` / `.png`.
+void write_convergence_plot(const std::vector<std::vector<Run>>& runs, Quantity quantity,
+                            const std::string& what, const fs::path& stem, bool png)
 {
   PlotSpec spec;
-  spec.title = "Knee flexion: error against run time";
+  spec.title = "Knee flexion: " + what + " error against run time";
   spec.x_label = "solve time per frame (s)";
-  spec.y_label = "largest strain energy error over the angles (%)";
+  spec.y_label = "largest " + what + " error over the angles (%)";
   spec.log_x = true;
   spec.log_y = true;
   std::map<std::string, PlotSeries> families;
@@ -286,7 +289,7 @@ void write_convergence_plot(const std::vector<std::vector<Run>>& runs, const fs:
         order.push_back(name);
       PlotSeries& series = families[name];
       series.name = name;
-      const double error = 100.0 * run.worst_vs_reference[0];
+      const double error = 100.0 * run.worst_vs_reference[static_cast<std::size_t>(quantity)];
       series.x.push_back(seconds_per_frame(run));
       series.y.push_back(error);
       series.point_labels.push_back(fmt::format("{}", run.flexion.tets));
@@ -319,7 +322,7 @@ void write_convergence_plot(const std::vector<std::vector<Run>>& runs, const fs:
     paper.y = {low / 2.0, high * 2.0};
     spec.series.push_back(paper);
   }
-  write_plot(spec, out / "convergence", png);
+  write_plot(spec, stem, png);
 }
 
 /// The errors of one ligament's runs: against the reference, its family's reference and the
@@ -493,7 +496,12 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
                                        : fmt::format(", {} tets", own.tets);
   }
   write_tables(runs, inputs.out, reference_text, ligaments);
-  write_convergence_plot(runs, inputs.out, inputs.png);
+  write_convergence_plot(runs, Quantity::energy, "strain energy", inputs.out / "convergence",
+                         inputs.png);
+  write_convergence_plot(runs, Quantity::femur_force, "femur force",
+                         inputs.out / "convergence_femur_force", inputs.png);
+  write_convergence_plot(runs, Quantity::regional_strain, "regional peak fiber strain",
+                         inputs.out / "convergence_regional_strain", inputs.png);
 
   report["reference"] = {{"tets", reference_tets}, {"model", reference_key}};
   report["ligaments"] = ligaments;
@@ -515,6 +523,7 @@ nlohmann::json run_convergence_study(const ConvergenceInputs& inputs)
            {"peak_rss_mib", std::max(run.build.peak_rss_mib, run.flexion.peak_rss_mib)},
            {"energy_error", run.worst_vs_reference[0]},
            {"femur_force_error", run.worst_vs_reference[3]},
+           {"regional_strain_error", run.worst_vs_reference[4]},
            {"failure", run.failure}});
   report["runs"] = entries;
   return report;

@@ -17,6 +17,8 @@ std::string to_string(Quantity quantity)
     return "p95_fiber_strain";
   case Quantity::femur_force:
     return "femur_force";
+  case Quantity::regional_strain:
+    return "regional_peak_fiber_strain";
   }
   return "?";
 }
@@ -32,6 +34,8 @@ double quantity_value(const AngleFigures& angle, Quantity quantity)
     return angle.p95_fiber_stretch - 1.0;
   case Quantity::femur_force:
     return angle.femur_force_n.norm();
+  case Quantity::regional_strain:
+    return angle.regional_fiber_stretch - 1.0;
   }
   return 0.0;
 }
@@ -62,13 +66,15 @@ std::vector<AngleErrors> angle_errors(const FlexionFigures& run, const FlexionFi
   return errors;
 }
 
-std::array<double, 4> worst_errors(const std::vector<AngleErrors>& errors)
+QuantityValues worst_errors(const std::vector<AngleErrors>& errors)
 {
-  std::array<double, 4> worst;
-  worst.fill(errors.empty() ? std::numeric_limits<double>::quiet_NaN() : 0.0);
+  // NaN where no angle has the figure (a run whose figures lack it), not zero.
+  QuantityValues worst;
+  worst.fill(std::numeric_limits<double>::quiet_NaN());
   for (const AngleErrors& row : errors)
     for (std::size_t q = 0; q < worst.size(); ++q)
-      worst[q] = std::max(worst[q], row.error[q]);
+      if (std::isfinite(row.error[q]))
+        worst[q] = std::isnan(worst[q]) ? row.error[q] : std::max(worst[q], row.error[q]);
   return worst;
 }
 

@@ -12,10 +12,14 @@
 
 namespace ligsim::study {
 
-/// The quantities compared, in the order of the tables' columns.
-enum class Quantity { energy, mean_strain, p95_strain, femur_force };
-inline constexpr std::array<Quantity, 4> kQuantities = {
-    Quantity::energy, Quantity::mean_strain, Quantity::p95_strain, Quantity::femur_force};
+/// The quantities compared, in the order of the tables' columns. The regional peak is the largest
+/// fiber strain over 2 mm regions (sim/flexion/regional_strain.hpp), the peak the docs judge.
+enum class Quantity { energy, mean_strain, p95_strain, femur_force, regional_strain };
+inline constexpr std::array<Quantity, 5> kQuantities = {Quantity::energy, Quantity::mean_strain,
+                                                        Quantity::p95_strain, Quantity::femur_force,
+                                                        Quantity::regional_strain};
+/// One figure per quantity, by Quantity.
+using QuantityValues = std::array<double, kQuantities.size()>;
 std::string to_string(Quantity quantity);
 
 /// Relative errors (fractions) at one angle. Fiber figures compare strains (stretch - 1), since
@@ -23,14 +27,14 @@ std::string to_string(Quantity quantity);
 /// force compares vectors: |F - F_ref| / |F_ref|.
 struct AngleErrors {
   double angle_deg = 0.0;
-  std::array<double, 4> error{}; ///< by Quantity
+  QuantityValues error{}; ///< by Quantity
 };
 
 /// The errors of `run` against `reference` at the angles both reached (matched by angle).
 std::vector<AngleErrors> angle_errors(const FlexionFigures& run, const FlexionFigures& reference);
 
-/// The largest error over the angles, by Quantity (NaN where no angle is shared).
-std::array<double, 4> worst_errors(const std::vector<AngleErrors>& errors);
+/// The largest error over the angles, by Quantity (NaN where no angle is shared or has it).
+QuantityValues worst_errors(const std::vector<AngleErrors>& errors);
 
 /// Richardson extrapolation from three runs at mesh sizes h1 > h2 > h3 (values f1, f2, f3):
 /// f = f_inf + C h^p. Returns f_inf and p when the differences keep their sign and shrink

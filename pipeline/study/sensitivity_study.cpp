@@ -63,6 +63,8 @@ std::string quantity_label(Quantity q)
     return "95th pct fiber strain (%)";
   case Quantity::femur_force:
     return "femur force (N)";
+  case Quantity::regional_strain:
+    return "regional peak fiber strain (%)";
   }
   return "";
 }
@@ -71,7 +73,9 @@ std::string quantity_label(Quantity q)
 double shown(const AngleFigures& a, Quantity q)
 {
   const double v = quantity_value(a, q);
-  return q == Quantity::mean_strain || q == Quantity::p95_strain ? 100.0 * v : v;
+  return q == Quantity::mean_strain || q == Quantity::p95_strain || q == Quantity::regional_strain
+             ? 100.0 * v
+             : v;
 }
 
 /// One ligament's rows: per variant and angle (CSV), per variant at the last angle, the spread,
@@ -107,10 +111,10 @@ LigamentTables ligament_tables(const std::vector<Outcome>& outcomes, const std::
 
   // The figures at the last angle: per variant, the spread, and per factor.
   const AngleFigures& base = *at_angle(baseline.flexion, last);
-  std::map<std::string, std::array<double, 4>> squares; // by factor
-  std::map<std::string, std::array<double, 4>> largest;
-  std::array<double, 4> total{};
-  std::array<std::vector<double>, 4> values;
+  std::map<std::string, QuantityValues> squares; // by factor
+  std::map<std::string, QuantityValues> largest;
+  QuantityValues total{};
+  std::array<std::vector<double>, kQuantities.size()> values;
   std::vector<std::string> factors;
   for (const Outcome& o : outcomes) {
     const SensitivityVariant& v = *o.variant;
@@ -164,9 +168,9 @@ LigamentTables ligament_tables(const std::vector<Outcome>& outcomes, const std::
   }
   for (const std::string& f : factors) {
     t.factor_rows += fmt::format("| {} | {} ", ligament, f);
-    for (std::size_t q = 0; q < 4; ++q)
+    for (std::size_t q = 0; q < kQuantities.size(); ++q)
       t.factor_rows += fmt::format("| {:+.1f} % ", 100.0 * largest[f][q]);
-    for (std::size_t q = 0; q < 4; ++q)
+    for (std::size_t q = 0; q < kQuantities.size(); ++q)
       t.factor_rows +=
           fmt::format("| {:.0f} % ", total[q] > 0 ? 100.0 * squares[f][q] / total[q] : 0.0);
     t.factor_rows += "|\n";
@@ -298,8 +302,9 @@ nlohmann::json run_sensitivity_study(const SensitivityInputs& inputs)
           "\n| ligament | figure | baseline | min | median | max | (max - min) / baseline |\n"
           "| --- | --- | ---: | ---: | ---: | ---: | ---: |\n{}"
           "\n| ligament | factor | largest change: energy | mean strain | p95 strain | femur force "
-          "| share of spread: energy | mean strain | p95 strain | femur force |\n"
-          "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n{}",
+          "| regional peak | share of spread: energy | mean strain | p95 strain | femur force | "
+          "regional peak |\n"
+          "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n{}",
           last, variant_rows, spread_rows, factor_rows));
   write_plot(spec, inputs.out / "sensitivity", inputs.png);
   return report;

@@ -75,6 +75,7 @@ FlexionFigures sweep_ligament(const sim::LigamentModel& ligament, const sim::Kne
         row.strain_energy_mj = angle.strain_energy_mj;
         row.mean_fiber_stretch = angle.mean_fiber_stretch;
         row.max_fiber_stretch = angle.max_fiber_stretch;
+        row.regional_fiber_stretch = angle.max_regional_fiber_stretch;
         row.p95_fiber_stretch = weighted_quantile(stretch, volumes, 0.95);
         row.femur_force_n = angle.femur_force_n;
         figures.angles.push_back(row);

@@ -47,6 +47,8 @@ struct AngleFigures {
   double mean_fiber_stretch = 0.0; ///< volume-weighted |F a|, pre-stretch included
   double p95_fiber_stretch = 0.0;  ///< volume-weighted 95th percentile
   double max_fiber_stretch = 0.0;
+  /// The largest mean fiber stretch over a region of the settings' radius (2 mm by default)
+  double regional_fiber_stretch = 0.0;
   Eigen::Vector3d femur_force_n = Eigen::Vector3d::Zero();
 };
 

@@ -34,7 +34,8 @@ TEST(StudyCli, ConvergenceLaddersAgainstTheFinestRun)
   const CliResult result = run_short_convergence(band, "", out);
   ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
   for (const char* file : {"convergence.csv", "convergence_angles.csv", "convergence.md",
-                           "convergence.svg", "convergence.png", "summary.json"})
+                           "convergence.svg", "convergence.png", "convergence_femur_force.svg",
+                           "convergence_regional_strain.svg", "summary.json"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
 
   const nlohmann::json summary = read_json(out / "summary.json");
@@ -55,9 +56,14 @@ TEST(StudyCli, ConvergenceLaddersAgainstTheFinestRun)
   EXPECT_EQ(runs[1]["energy_error"].get<double>(), 0.0);
   EXPECT_GT(runs[0]["energy_error"].get<double>(), 1e-4);
   EXPECT_LT(runs[0]["energy_error"].get<double>(), 0.5);
-  // The interactive run on the coarsest mesh, timed per frame.
+  // The regional peak (2 mm regions) is compared too: the coarse mesh's differs from the
+  // reference's.
+  EXPECT_EQ(runs[1]["regional_strain_error"].get<double>(), 0.0);
+  EXPECT_GT(runs[0]["regional_strain_error"].get<double>(), 0.0);
+  // The interactive run on the coarsest mesh, timed per frame, its regional peak compared too.
   EXPECT_EQ(runs[3]["family"], "interactive, mesh x3");
   EXPECT_GT(runs[3]["seconds_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(runs[3]["regional_strain_error"].get<double>(), 0.0);
 
   std::ifstream png(out / "convergence.png", std::ios::binary);
   char magic[4] = {};
@@ -108,6 +114,10 @@ TEST(StudyCli, ConvergenceOfBothElementOrdersAgainstTheFinestTenNodeMesh)
   std::ifstream md(out / "convergence.md");
   const std::string text{std::istreambuf_iterator<char>(md), {}};
   EXPECT_NE(text.find("in the least solve time"), std::string::npos);
+  // --mesh-only: the mesh ladder alone, every run reused or swept again but none added.
+  const CliResult mesh_only = run_short_convergence(band, "--orders 2,1 --no-png --mesh-only", out);
+  ASSERT_EQ(mesh_only.exit_code, 0) << mesh_only.stderr_text;
+  EXPECT_EQ(read_json(out / "summary.json")["results"]["runs"].size(), 4u);
 
   const CliResult bad =
       run_ligsim("study convergence --model-config " + band.build_config.string() +

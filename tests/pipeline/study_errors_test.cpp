@@ -13,9 +13,11 @@ using namespace ligsim::study;
 
 namespace {
 
-AngleFigures angle(double deg, double energy, double mean, double p95, Eigen::Vector3d force)
+AngleFigures angle(double deg, double energy, double mean, double p95, Eigen::Vector3d force,
+                   double regional = NAN)
 {
   AngleFigures a;
+  a.regional_fiber_stretch = regional;
   a.angle_deg = deg;
   a.strain_energy_mj = energy;
   a.mean_fiber_stretch = mean;
@@ -30,9 +32,10 @@ AngleFigures angle(double deg, double energy, double mean, double p95, Eigen::Ve
 TEST(StudyErrors, RelativeErrorsPerSharedAngle)
 {
   FlexionFigures reference, run;
-  reference.angles = {angle(0, 100, 1.02, 1.05, {0, 0, 10}), angle(45, 200, 1.10, 1.20, {0, 3, 4})};
-  run.angles = {angle(0, 110, 1.03, 1.05, {0, 0, 9}), angle(30, 1, 1, 1, {1, 0, 0}),
-                angle(45, 180, 1.10, 1.25, {0, 4, 4})};
+  reference.angles = {angle(0, 100, 1.02, 1.05, {0, 0, 10}, 1.04),
+                      angle(45, 200, 1.10, 1.20, {0, 3, 4}, 1.08)};
+  run.angles = {angle(0, 110, 1.03, 1.05, {0, 0, 9}, 1.05), angle(30, 1, 1, 1, {1, 0, 0}),
+                angle(45, 180, 1.10, 1.25, {0, 4, 4}, 1.07)};
   const std::vector<AngleErrors> errors = angle_errors(run, reference);
   ASSERT_EQ(errors.size(), 2u); // 30 degrees is not in the reference
   EXPECT_DOUBLE_EQ(errors[0].angle_deg, 0.0);
@@ -43,10 +46,18 @@ TEST(StudyErrors, RelativeErrorsPerSharedAngle)
   EXPECT_NEAR(errors[1].error[0], 0.1, 1e-12);       // 180 against 200
   EXPECT_NEAR(errors[1].error[2], 0.25, 1e-12);      // 0.25 against 0.20
   EXPECT_NEAR(errors[1].error[3], 1.0 / 5.0, 1e-12); // |(0,1,0)| / 5: the direction counts
+  EXPECT_NEAR(errors[0].error[4], 0.25, 1e-12);      // regional peak 5 % against 4 %
+  EXPECT_NEAR(errors[1].error[4], 0.125, 1e-12);     // 7 % against 8 %
   const auto worst = worst_errors(errors);
   EXPECT_NEAR(worst[1], 0.5, 1e-12);
   EXPECT_NEAR(worst[3], 0.2, 1e-12);
+  EXPECT_NEAR(worst[4], 0.25, 1e-12);
   EXPECT_TRUE(std::isnan(worst_errors({})[0]));
+  // A run that measured no regional peak has no regional error, not a zero one.
+  for (AngleFigures& a : run.angles)
+    a.regional_fiber_stretch = NAN;
+  EXPECT_TRUE(std::isnan(worst_errors(angle_errors(run, reference))[4]));
+  EXPECT_NEAR(worst_errors(angle_errors(run, reference))[0], 0.1, 1e-12);
 }
 
 TEST(StudyErrors, RichardsonRecoversAnExactPowerLaw)
