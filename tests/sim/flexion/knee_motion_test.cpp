@@ -77,6 +77,33 @@ PlausibilityContext bar_context(const FlexionSettings& settings)
           settings.in_situ_strain, std::nullopt};
 }
 
+/// The ligament of `model` pushed out of its tibia at rest (no in-situ strain), as the sweep does
+/// before its first angle.
+struct PushedOut {
+  HyperelasticBody body;
+  OverlapReport report;
+  Eigen::VectorXd x; ///< the pushed positions
+};
+
+PushedOut pushed_out_of_tibia(const KneeModel& model, const std::string& cache_name)
+{
+  ligsim::Progress::set_quiet(true);
+  FlexionSettings settings;
+  settings.in_situ_strain = 0.0;
+  PushedOut pushed{ligament_body(model, settings.material, settings.in_situ_strain), {}, {}};
+  const BoundaryConditions conditions =
+      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
+  ContactConfig config;
+  config.bones = {"tibia"};
+  const fs::path cache = fs::temp_directory_path() / cache_name;
+  fs::remove_all(cache);
+  const KneeContact contact(model, conditions, config, cache);
+  pushed.x = pushed.body.rest_positions();
+  pushed.report =
+      resolve_initial_overlap(pushed.body, conditions, contact, settings.newton, pushed.x);
+  return pushed;
+}
+
 } // namespace
 
 TEST(KneeMotion, TransepicondylarAxisPointsTheWayThatFlexes)
@@ -166,23 +193,10 @@ TEST(LigamentLength, FollowsTheTetsItIsEmbeddedIn)
 
 TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
 {
-  ligsim::Progress::set_quiet(true);
   KneeModel model = bar_knee();
   // A bone bulging 0.4 mm into the bar's -x side over its middle (x < 0.4, z 6..14).
   model.tibia = box({-20.0, -20.0, 6.0}, {0.4, 24.0, 14.0});
-  FlexionSettings settings;
-  settings.in_situ_strain = 0.0;
-  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
-  const BoundaryConditions conditions =
-      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
-  ContactConfig config;
-  config.bones = {"tibia"};
-  const fs::path cache = fs::temp_directory_path() / "ligsim_initial_overlap_cache";
-  fs::remove_all(cache);
-  const KneeContact contact(model, conditions, config, cache);
-  Eigen::VectorXd x = body.rest_positions();
-  const OverlapReport report =
-      resolve_initial_overlap(body, conditions, contact, settings.newton, x);
+  const auto [body, report, x] = pushed_out_of_tibia(model, "ligsim_initial_overlap_cache");
   ASSERT_TRUE(report.pushed);
   ASSERT_EQ(report.before.size(), 1u);
   EXPECT_GT(report.before[0].inside, 0);
@@ -195,12 +209,10 @@ TEST(InitialOverlap, NodesInsideABoneArePushedOutBeforeTheSweep)
   for (Eigen::Index e = 0; e < body.element_count(); ++e)
     EXPECT_GT(body.measures(x, e).J, 0.5);
   // A ligament clear of the bones is left alone.
-  Eigen::VectorXd clear = body.rest_positions();
   model.tibia = box({-20.0, -20.0, 6.0}, {-1.0, 24.0, 14.0});
-  fs::remove_all(cache);
-  const KneeContact apart(model, conditions, config, cache);
-  EXPECT_FALSE(resolve_initial_overlap(body, conditions, apart, settings.newton, clear).pushed);
-  EXPECT_EQ(clear, body.rest_positions());
+  const PushedOut apart = pushed_out_of_tibia(model, "ligsim_initial_overlap_cache");
+  EXPECT_FALSE(apart.report.pushed);
+  EXPECT_EQ(apart.x, apart.body.rest_positions());
 }
 
 TEST(PenetrationCheck, LeavesOutTheMiddlesOfEdgesFromAFootprintInTheBoneButNoFreeCorner)
@@ -233,24 +245,11 @@ TEST(InitialOverlap, AQuadraticBarsMidEdgeNodesArePushedOutToo)
 {
   // A ridge of bone 0.3 mm into the bar's -x side between two layers of its corner nodes
   // (z = 7.5 and 10): only mid-edge nodes (z = 8.75) are inside, and contact must see them.
-  ligsim::Progress::set_quiet(true);
   const KneeModel linear = bar_knee();
   KneeModel model = with_quadratic_tets(linear);
   model.tibia = box({-20.0, -20.0, 8.0}, {0.3, 24.0, 9.5});
-  FlexionSettings settings;
-  settings.in_situ_strain = 0.0;
-  const HyperelasticBody body = ligament_body(model, settings.material, settings.in_situ_strain);
+  const auto [body, report, x] = pushed_out_of_tibia(model, "ligsim_quadratic_overlap_cache");
   ASSERT_TRUE(body.quadratic());
-  const BoundaryConditions conditions =
-      knee_conditions(model, FlexionAxis{{2.0, 2.0, 20.0}, Eigen::Vector3d::UnitX()}, 0.0);
-  ContactConfig config;
-  config.bones = {"tibia"};
-  const fs::path cache = fs::temp_directory_path() / "ligsim_quadratic_overlap_cache";
-  fs::remove_all(cache);
-  const KneeContact contact(model, conditions, config, cache);
-  Eigen::VectorXd x = body.rest_positions();
-  const OverlapReport report =
-      resolve_initial_overlap(body, conditions, contact, settings.newton, x);
   ASSERT_TRUE(report.pushed);
   EXPECT_GT(report.before[0].inside, 0);
   EXPECT_EQ(report.after[0].inside, 0);
