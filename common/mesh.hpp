@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace ligsim {
 
@@ -40,6 +41,10 @@ struct QuadraticTetMesh {
   Points V;
   QuadraticTetrahedra T;
 };
+
+/// A curve on a surface that a mesh is to keep as a chain of its edges (a feature), as the
+/// points of a polyline, mm; closed when its first point equals its last.
+using FeatureLine = std::vector<Eigen::Vector3d>;
 
 /// A mesh's mean element size, (volume / elements)^(1/3): how the companion's size search and
 /// the flexion's error estimate compare two meshes of one ligament.

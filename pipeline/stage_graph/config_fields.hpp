@@ -95,6 +95,7 @@ template <class P, class Visit> void visit_tetmesh(P& p, Visit&& visit)
   visit("perturb", p.perturb);
   visit("seed", p.seed);
   visit("order", p.order);
+  visit("footprint_rims", p.footprint_rims);
 }
 
 template <class P, class Visit> void visit_fibers(P& p, Visit&& visit)

@@ -30,7 +30,9 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
   const TetMesh mesh = io::from_unstructured_grid(fibers_grid, &tet10);
   const Eigen::MatrixX3d directions = io::get_array(fibers_grid->GetCellData(), "fiber");
   model::Model built =
-      model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model);
+      model::assemble(mesh, directions, ligament, areas.femur, areas.tibia, config.model,
+                      config.tetmesh.footprint_rims ? model::FootprintRule::faces_inside_rim
+                                                    : model::FootprintRule::nearest_triangle);
 
   // The bones, repaired once: to close the footprints where the ligament lies in them, and
   // beside the model for flexion and pictures. A user's surface is written in; one already there
@@ -88,6 +90,12 @@ nlohmann::json run_model(const BuildConfig& config, const fs::path& dir)
       {"boundary_nodes", built.boundary_nodes},
       {"femur_nodes", count(built.femur_nodes)},
       {"tibia_nodes", count(built.tibia_nodes)},
+      {"footprint_area_mm2",
+       {{"femur", built.femur_area_mm2},
+        {"tibia", built.tibia_area_mm2},
+        {"rule", config.tetmesh.footprint_rims
+                     ? "the boundary faces whose centroid lies inside the attachment area's rim"
+                     : "the boundary faces whose three corners are bound"}}},
       {"footprint_nodes_unbound",
        {{"femur", built.femur_nodes_unbound},
         {"tibia", built.tibia_nodes_unbound},

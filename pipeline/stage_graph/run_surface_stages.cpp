@@ -7,6 +7,7 @@
 #include "sim/mesh/curved_boundary.hpp"
 #include "sim/mesh/quadratic_tet.hpp"
 #include "stages/attachments/attachments.hpp"
+#include "stages/attachments/footprint_rim.hpp"
 #include "stages/distance/distance.hpp"
 #include "stages/geometry/grid_vdb.hpp"
 #include "stages/geometry/grid_vti.hpp"
@@ -122,9 +123,25 @@ nlohmann::json run_distance(const BuildConfig& config, const fs::path& dir)
 nlohmann::json run_tetmesh(const BuildConfig& config, const fs::path& dir)
 {
   const TriangleSurface ligament = load_ligament(config);
-  const tetmesh::Result result = tetmesh::make_tet_mesh(ligament, config.tetmesh);
+  const StoredAttachments areas = load_attachments(dir);
+  std::vector<FeatureLine> rims;
+  nlohmann::json rim_report = "not kept ([tetmesh] footprint_rims = false)";
+  if (config.tetmesh.footprint_rims) {
+    rim_report = {{"rule", "each footprint's rim is kept as a chain of mesh edges, so that every "
+                           "mesh binds the same area"}};
+    for (const auto& [bone, area] : {std::pair{"femur", &areas.femur}, {"tibia", &areas.tibia}}) {
+      const std::vector<FeatureLine> found = attachments::footprint_rims(ligament, *area);
+      double length = 0;
+      for (const FeatureLine& rim : found)
+        length += attachments::feature_length(rim);
+      rim_report[bone] = {{"loops", found.size()}, {"length_mm", length}};
+      rims.insert(rims.end(), found.begin(), found.end());
+    }
+  }
+  const tetmesh::Result result = tetmesh::make_tet_mesh(ligament, config.tetmesh, rims);
   const tetmesh::Quality& q = result.quality;
   nlohmann::json report = {
+      {"footprint_rims", rim_report},
       {"tets", q.tets},
       {"nodes", q.nodes},
       {"min_dihedral_deg", q.min_dihedral_deg},

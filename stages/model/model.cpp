@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/tet_faces.hpp"
+#include "stages/attachments/footprint_rim.hpp"
 #include "stages/geometry/surface_query.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 namespace ligsim::model {
 
@@ -43,9 +45,24 @@ int free_unsupported_nodes(const std::vector<std::array<int, 3>>& faces, std::ve
   }
 }
 
+namespace {
+
+Eigen::Vector3d face_centroid(const TetMesh& mesh, const std::array<int, 3>& face)
+{
+  return (mesh.V.row(face[0]) + mesh.V.row(face[1]) + mesh.V.row(face[2])).transpose() / 3.0;
+}
+
+double face_area(const TetMesh& mesh, const std::array<int, 3>& face)
+{
+  const Eigen::RowVector3d a = mesh.V.row(face[0]);
+  return 0.5 * (mesh.V.row(face[1]) - a).cross(mesh.V.row(face[2]) - a).norm();
+}
+
+} // namespace
+
 Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
                const TriangleSurface& ligament, const std::vector<int>& femur_area,
-               const std::vector<int>& tibia_area, const Parameters& parameters)
+               const std::vector<int>& tibia_area, const Parameters& parameters, FootprintRule rule)
 {
   if (directions.rows() != mesh.T.rows())
     fail("model: {} fiber directions for {} tets", directions.rows(), mesh.T.rows());
@@ -64,28 +81,48 @@ Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
   model.femur_nodes.assign(n, false);
   model.tibia_nodes.assign(n, false);
 
-  std::vector<char> area_of(static_cast<std::size_t>(ligament.V.rows()), 0); // 1 femur, 2 tibia
+  std::vector<bool> in_femur(static_cast<std::size_t>(ligament.V.rows()), false);
+  std::vector<bool> in_tibia(in_femur.size(), false);
   for (int v : femur_area)
-    area_of[static_cast<std::size_t>(v)] = 1;
+    in_femur.at(static_cast<std::size_t>(v)) = true;
   for (int v : tibia_area)
-    area_of[static_cast<std::size_t>(v)] = 2;
+    in_tibia.at(static_cast<std::size_t>(v)) = true;
+  model.boundary_nodes = static_cast<int>(std::count(boundary.begin(), boundary.end(), true));
   const SurfaceQuery query(ligament);
-  for (std::size_t v = 0; v < n; ++v) {
-    if (!boundary[v])
-      continue;
-    ++model.boundary_nodes;
-    const int face = query.closest(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()).face;
-    int femur = 0, tibia = 0;
-    for (int k = 0; k < 3; ++k) {
-      const char a = area_of[static_cast<std::size_t>(ligament.F(face, k))];
-      femur += a == 1;
-      tibia += a == 2;
+  const auto sides = {std::tuple{&in_femur, &model.femur_nodes, &model.femur_area_mm2},
+                      std::tuple{&in_tibia, &model.tibia_nodes, &model.tibia_area_mm2}};
+  if (rule == FootprintRule::faces_inside_rim) {
+    for (const auto& face : faces) {
+      const SurfaceQuery::Closest nearest = query.closest(face_centroid(mesh, face));
+      for (auto [in_area, nodes, area_mm2] : sides) {
+        if (attachments::footprint_share(ligament, *in_area, nearest.face, nearest.point) <= 0.5)
+          continue;
+        for (int v : face)
+          (*nodes)[static_cast<std::size_t>(v)] = true;
+        *area_mm2 += face_area(mesh, face);
+      }
     }
-    model.femur_nodes[v] = femur >= 2;
-    model.tibia_nodes[v] = tibia >= 2;
+  } else {
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!boundary[v])
+        continue;
+      const int face = query.closest(mesh.V.row(static_cast<Eigen::Index>(v)).transpose()).face;
+      for (auto [in_area, nodes, area_mm2] : sides) {
+        int corners = 0;
+        for (int k = 0; k < 3; ++k)
+          corners += (*in_area)[static_cast<std::size_t>(ligament.F(face, k))];
+        (*nodes)[v] = corners >= 2;
+      }
+    }
+    model.femur_nodes_unbound = free_unsupported_nodes(faces, model.femur_nodes);
+    model.tibia_nodes_unbound = free_unsupported_nodes(faces, model.tibia_nodes);
+    for (const auto& face : faces)
+      for (auto [in_area, nodes, area_mm2] : sides)
+        if ((*nodes)[static_cast<std::size_t>(face[0])] &&
+            (*nodes)[static_cast<std::size_t>(face[1])] &&
+            (*nodes)[static_cast<std::size_t>(face[2])])
+          *area_mm2 += face_area(mesh, face);
   }
-  model.femur_nodes_unbound = free_unsupported_nodes(faces, model.femur_nodes);
-  model.tibia_nodes_unbound = free_unsupported_nodes(faces, model.tibia_nodes);
   const auto femur_count = std::count(model.femur_nodes.begin(), model.femur_nodes.end(), true);
   const auto tibia_count = std::count(model.tibia_nodes.begin(), model.tibia_nodes.end(), true);
   if (femur_count == 0 || tibia_count == 0)

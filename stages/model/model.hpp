@@ -24,6 +24,20 @@ struct Model {
   int boundary_nodes = 0;        ///< nodes on the mesh surface
   int femur_nodes_unbound = 0;   ///< nodes the rule bound that no bound face supports
   int tibia_nodes_unbound = 0;
+  double femur_area_mm2 = 0; ///< the mesh's boundary faces bound to the femur
+  double tibia_area_mm2 = 0;
+};
+
+/// How boundary nodes are bound to a bone's attachment area.
+enum class FootprintRule {
+  /// A boundary node whose nearest ligament-surface triangle has at least two corners in the
+  /// area, then freed unless it is a corner of a boundary face so bound
+  /// (free_unsupported_nodes): each mesh draws the rim a little differently.
+  nearest_triangle,
+  /// The corners of every boundary face whose centroid's nearest point on the ligament's surface
+  /// lies inside the area's rim (attachments::footprint_share above 0.5): on a mesh that keeps
+  /// the rims as edges (attachments::footprint_rims) every mesh binds the same area.
+  faces_inside_rim,
 };
 
 /// The nodes on the boundary of a tet mesh (on a face that belongs to one tet only).
@@ -36,14 +50,15 @@ std::vector<bool> boundary_nodes(const TetMesh& mesh);
 /// every bound node has a bound face; returns how many it freed.
 int free_unsupported_nodes(const std::vector<std::array<int, 3>>& faces, std::vector<bool>& bound);
 
-/// Builds the model. A boundary node is bound to a bone when the ligament-surface triangle
-/// nearest it has at least two vertices in that bone's attachment area (`femur_area`,
-/// `tibia_area`: sorted ligament-surface vertex indices) and it is a corner of a boundary face
-/// so bound (free_unsupported_nodes). Throws InputError if either bone
-/// binds no node, or if `directions` does not hold one unit vector per tet.
+/// Builds the model, binding boundary nodes to each bone's attachment area (`femur_area`,
+/// `tibia_area`: sorted ligament-surface vertex indices) by `rule`. A footprint so bound is an
+/// area of faces, never a node alone or a line (a point constraint, beside which the fiber strain
+/// is singular). Throws InputError if either bone binds no node, or if `directions` does not hold
+/// one unit vector per tet.
 Model assemble(const TetMesh& mesh, const Eigen::MatrixX3d& directions,
                const TriangleSurface& ligament, const std::vector<int>& femur_area,
-               const std::vector<int>& tibia_area, const Parameters& parameters);
+               const std::vector<int>& tibia_area, const Parameters& parameters,
+               FootprintRule rule = FootprintRule::nearest_triangle);
 
 /// What close_footprints_in_bones did, per bone.
 struct FootprintClosing {

@@ -6,7 +6,7 @@
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
-#include <CGAL/Polyhedral_mesh_domain_3.h>
+#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/exude_mesh_3.h>
@@ -22,7 +22,7 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
-using Domain = CGAL::Polyhedral_mesh_domain_3<SurfaceMesh, Kernel>;
+using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<Kernel, SurfaceMesh>;
 // Sequential: the parallel mesher's result depends on thread scheduling, not only on the seed.
 using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
@@ -80,13 +80,22 @@ TetMesh to_tet_mesh(const Complex& complex)
 
 } // namespace
 
-TetMesh mesh_with_cgal(const TriangleSurface& surface, const Parameters& resolved)
+TetMesh mesh_with_cgal(const TriangleSurface& surface, const std::vector<FeatureLine>& features,
+                       double feature_edge_mm, const Parameters& resolved)
 {
   namespace params = CGAL::parameters;
   const SurfaceMesh boundary = to_surface_mesh(surface);
   CGAL::Random random(static_cast<unsigned int>(resolved.seed));
-  const Domain domain(boundary, &random);
-  const Criteria criteria(params::facet_angle = resolved.facet_angle_deg,
+  Domain domain(boundary, &random);
+  std::vector<std::vector<Kernel::Point_3>> lines;
+  for (const FeatureLine& feature : features) {
+    lines.emplace_back();
+    for (const Eigen::Vector3d& p : feature)
+      lines.back().emplace_back(p.x(), p.y(), p.z());
+  }
+  domain.add_features(lines.begin(), lines.end());
+  const Criteria criteria(params::edge_size = feature_edge_mm,
+                          params::facet_angle = resolved.facet_angle_deg,
                           params::facet_size = resolved.facet_size_mm,
                           params::facet_distance = resolved.facet_distance_mm,
                           params::cell_radius_edge_ratio = resolved.radius_edge_ratio,

@@ -7,8 +7,11 @@
 namespace ligsim::tetmesh {
 
 /// Runs Mesh_3 on the volume bounded by `surface` (already checked closed) with sizes already
-/// resolved (all > 0), then perturbation and exudation as asked. Returns the cells in the
+/// resolved (all > 0), keeping `features` (curves on the surface) as chains of mesh edges at
+/// most `feature_edge_mm` long, then
+/// perturbation and exudation as asked. Returns the cells in the
 /// complex with their vertices renumbered compactly, in CGAL's (positive) orientation.
-TetMesh mesh_with_cgal(const TriangleSurface& surface, const Parameters& resolved);
+TetMesh mesh_with_cgal(const TriangleSurface& surface, const std::vector<FeatureLine>& features,
+                       double feature_edge_mm, const Parameters& resolved);
 
 } // namespace ligsim::tetmesh

@@ -33,6 +33,12 @@ struct Parameters {
   /// 1: linear tets; 2: 10-node tets, their boundary mid-edge nodes on the surface (the build's
   /// tetmesh stage adds them, sim/mesh/curved_boundary.hpp; make_tet_mesh meshes the corners).
   int order = 1;
+  /// The build's tetmesh stage keeps each footprint's rim as a chain of edges (the `features` of
+  /// make_tet_mesh, from stages/attachments/footprint_rim.hpp), so that every mesh binds the same
+  /// area. Off by default: on coarse meshes of the synthetic band (sizes above its thickness) the
+  /// rims keep the elements beside them small, the companion's search cannot coarsen the mesh
+  /// without it losing volume, and Mesh_3 made one flat tet.
+  bool footprint_rims = false;
 };
 
 struct Quality {
@@ -66,7 +72,17 @@ struct Result {
 /// seed give the same mesh. Throws InputError on an empty, open, non-manifold or
 /// self-intersecting surface, bad indices, non-finite coordinates, invalid parameters, or when
 /// no tet is produced. Sizes far below the surface's size can take very long (no guard).
-Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters);
+/// `features`: curves on the surface (within facet_distance_mm of it) that the mesh keeps as
+/// chains of its edges, each at most the facet size and the thickness h long (Mesh_3's
+/// protecting balls), so that
+/// every mesh of the surface divides it along them alike: the footprints' rims. Throws
+/// InputError on a feature with fewer than two points or a non-finite one.
+Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters,
+                     const std::vector<FeatureLine>& features = {});
+
+/// The surface's characteristic thickness h = 2 V / A, mm. Throws InputError when it encloses no
+/// volume.
+double characteristic_thickness(const TriangleSurface& surface);
 
 /// Quality figures of `mesh`; distances are measured to `surface`.
 Quality measure_quality(const TetMesh& mesh, const TriangleSurface& surface);

@@ -1,3 +1,4 @@
+#include "common/error.hpp"
 #include "common/tet_faces.hpp"
 #include "stages/model/model.hpp"
 #include "stages/synthetic/shapes.hpp"
@@ -166,6 +167,77 @@ TEST(FootprintArea, OneSquareOfTheSurfaceIsAnAreaAndStays)
   const std::vector<bool> patch = model.tibia_nodes;
   EXPECT_EQ(free_unsupported_nodes(tet_boundary_faces(model.mesh.T), model.tibia_nodes), 0);
   EXPECT_EQ(model.tibia_nodes, patch);
+}
+
+/// The bar's boundary as a surface (its interior nodes unused), `scale` mm between nodes.
+TriangleSurface bar_surface(int nx, double scale)
+{
+  const TetMesh mesh = bar(nx);
+  TriangleSurface surface{scale * mesh.V, {}};
+  const std::vector<std::array<int, 3>> faces = tet_boundary_faces(mesh.T);
+  surface.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    surface.F.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
+  return surface;
+}
+
+/// The surface's vertices with x <= `x_mm` (as the attachments stage gives an area), or >=.
+std::vector<int> vertices_with_x(const TriangleSurface& surface, double x_mm, bool below)
+{
+  std::vector<int> area;
+  for (Eigen::Index v = 0; v < surface.V.rows(); ++v)
+    if (below ? surface.V(v, 0) <= x_mm : surface.V(v, 0) >= x_mm)
+      area.push_back(static_cast<int>(v));
+  return area;
+}
+
+/// Every tet's fiber along the bar.
+Eigen::MatrixX3d along_x(const TetMesh& mesh)
+{
+  return Eigen::RowVector3d::UnitX().replicate(mesh.T.rows(), 1);
+}
+
+TEST(FootprintArea, AFinerMeshBindsTheFacesInsideTheRimAndTheSameArea)
+{
+  // The ligament's surface: a 2 x 2 x 8 mm bar, nodes 1 mm apart. Its tibial area, the vertices
+  // with x <= 2, has its rim (the indicator's 0.5 level) at x = 2.5 on every side.
+  const TriangleSurface ligament = bar_surface(9, 1.0);
+  const std::vector<int> tibial = vertices_with_x(ligament, 2.0, true);
+  const std::vector<int> femoral = vertices_with_x(ligament, 8.0, false);
+  // Meshed with nodes 0.5 mm apart, the rim is a chain of mesh edges: the faces up to x = 2.5
+  // bind, the end (4 mm^2) and 2.5 mm of each of the four 2 mm sides (20 mm^2).
+  TetMesh fine = bar(17, 5);
+  fine.V *= 0.5;
+  const Model on_fine =
+      assemble(fine, along_x(fine), ligament, femoral, tibial, {}, FootprintRule::faces_inside_rim);
+  EXPECT_NEAR(on_fine.tibia_area_mm2, 24.0, 1e-9);
+  const std::vector<bool> boundary = boundary_nodes(fine);
+  for (Eigen::Index v = 0; v < fine.V.rows(); ++v)
+    EXPECT_EQ(on_fine.tibia_nodes[v], boundary[v] && fine.V(v, 0) <= 2.5) << v;
+  // The surface's own mesh cuts the rim: half the faces between x = 2 and 3, those with two
+  // corners in the area, bind, and the area is the same 24 mm^2.
+  const TetMesh coarse = bar(9);
+  const Model on_coarse = assemble(coarse, along_x(coarse), ligament, femoral, tibial, {},
+                                   FootprintRule::faces_inside_rim);
+  EXPECT_NEAR(on_coarse.tibia_area_mm2, 24.0, 1e-9);
+  // The femoral area is the far end's face alone: its rim lies half an element inside the sides.
+  EXPECT_NEAR(on_fine.femur_area_mm2, 4.0 + 4 * 2 * 0.5, 1e-9);
+}
+
+TEST(FootprintArea, AnAreaThatNoFaceReachesIsAClearError)
+{
+  const TriangleSurface ligament = bar_surface(9, 1.0);
+  const TetMesh mesh = bar(9);
+  // One vertex: its rim encloses less than half of any face around it.
+  const std::vector<int> lone = {static_cast<int>(vertices_with_x(ligament, 8.0, false)[0])};
+  try {
+    assemble(mesh, along_x(mesh), ligament, lone, vertices_with_x(ligament, 2.0, true), {},
+             FootprintRule::faces_inside_rim);
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("femoral attachment"), std::string::npos)
+        << error.what();
+  }
 }
 
 } // namespace

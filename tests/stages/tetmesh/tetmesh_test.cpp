@@ -1,4 +1,5 @@
 #include "common/error.hpp"
+#include "common/tet_faces.hpp"
 #include "stages/geometry/surface_topology.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/tetmesh/tetmesh.hpp"
@@ -9,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -189,6 +191,56 @@ TEST(Tetmesh, RealMclWithDefaults)
   // Facets cut the band's rounded rims a little: the volume is within 3 % of the input's.
   EXPECT_NEAR(q.total_volume_mm3, q.surface_volume_mm3, 0.03 * q.surface_volume_mm3);
   EXPECT_GT(q.tets, 1000); // 1.5 mm thick band meshed at about half its thickness
+}
+
+/// The boundary faces of `mesh` with corners on both sides of the plane x = `x_mm` (farther than
+/// 0.01 mm from it).
+int faces_across(const TetMesh& mesh, double x_mm)
+{
+  int across = 0;
+  for (const auto& face : tet_boundary_faces(mesh.T)) {
+    double low = x_mm, high = x_mm;
+    for (int v : face) {
+      low = std::min(low, mesh.V(v, 0));
+      high = std::max(high, mesh.V(v, 0));
+    }
+    across += low < x_mm - 0.01 && high > x_mm + 0.01;
+  }
+  return across;
+}
+
+TEST(Tetmesh, AFeatureLineBecomesAChainOfMeshEdges)
+{
+  // A circle around the capsule's middle, on its surface (0.004 mm off the facets between the
+  // 64 vertices of a ring), as a footprint's rim: no boundary face of the mesh crosses it.
+  const TriangleSurface surface = test::capsule(capsule_radius, capsule_length, 64);
+  const double middle = 0.5 * capsule_length;
+  FeatureLine circle;
+  for (int k = 0; k <= 128; ++k) {
+    const double angle = 2 * pi * (k % 128) / 128;
+    circle.emplace_back(middle, capsule_radius * std::cos(angle), capsule_radius * std::sin(angle));
+  }
+  const Result plain = make_tet_mesh(surface, Parameters{});
+  EXPECT_GT(faces_across(plain.mesh, middle), 0) << "a mesh that ignores the circle crosses it";
+  const Result kept = make_tet_mesh(surface, Parameters{}, {circle});
+  expect_valid_and_compact(kept.mesh);
+  EXPECT_EQ(faces_across(kept.mesh, middle), 0);
+  EXPECT_GE(kept.quality.min_dihedral_deg, 5.0);
+}
+
+TEST(Tetmesh, AFeatureLineNeedsTwoFinitePoints)
+{
+  const TriangleSurface surface = test::capsule(capsule_radius, capsule_length, 16);
+  for (const FeatureLine& bad :
+       {FeatureLine{Eigen::Vector3d(1, 0, 0)},
+        FeatureLine{Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(NAN, 0, 0)}}) {
+    try {
+      make_tet_mesh(surface, Parameters{}, {bad});
+      ADD_FAILURE() << "no error";
+    } catch (const InputError& error) {
+      EXPECT_THAT(error.what(), HasSubstr("feature line 0"));
+    }
+  }
 }
 
 /// The message of the InputError that make_tet_mesh throws, or "" if none.
