@@ -71,6 +71,21 @@ void check_orientation(const TetMesh& mesh)
   }
 }
 
+/// The sizes left at 0 in `parameters`, from the band's thickness.
+Parameters sizes_for_thickness(Parameters resolved, double thickness)
+{
+  // 10-node tets bend where linear ones lock, so they need not be thinner than the band: on the
+  // female HRA MCL (1.4 mm thick) 2.4 and 1.8 mm gave the 0.9 mm mesh's answer (docs/build.md).
+  const double size = resolved.order == 2 ? kQuadraticSizeOverThickness * thickness : thickness / 2;
+  if (resolved.cell_size_mm <= 0)
+    resolved.cell_size_mm = size;
+  if (resolved.facet_size_mm <= 0)
+    resolved.facet_size_mm = size;
+  if (resolved.facet_distance_mm <= 0)
+    resolved.facet_distance_mm = thickness / 20;
+  return resolved;
+}
+
 } // namespace
 
 double characteristic_thickness(const TriangleSurface& surface)
@@ -84,18 +99,7 @@ double characteristic_thickness(const TriangleSurface& surface)
 
 Parameters default_sizes(const TriangleSurface& surface, const Parameters& parameters)
 {
-  Parameters resolved = parameters;
-  const double thickness = characteristic_thickness(surface);
-  // 10-node tets bend where linear ones lock, so they need not be thinner than the band: on the
-  // female HRA MCL (1.4 mm thick) 2.4 and 1.8 mm gave the 0.9 mm mesh's answer (docs/build.md).
-  const double size = resolved.order == 2 ? kQuadraticSizeOverThickness * thickness : thickness / 2;
-  if (resolved.cell_size_mm <= 0)
-    resolved.cell_size_mm = size;
-  if (resolved.facet_size_mm <= 0)
-    resolved.facet_size_mm = size;
-  if (resolved.facet_distance_mm <= 0)
-    resolved.facet_distance_mm = thickness / 20;
-  return resolved;
+  return sizes_for_thickness(parameters, characteristic_thickness(surface));
 }
 
 Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameters,
@@ -105,11 +109,11 @@ Result make_tet_mesh(const TriangleSurface& surface, const Parameters& parameter
   check_surface(surface);
   check_features(features);
   Result result;
-  result.used = default_sizes(surface, parameters);
+  const double thickness = characteristic_thickness(surface);
+  result.used = sizes_for_thickness(parameters, thickness);
   // A protecting ball as wide as the band would leave no room for its other side: on the
   // synthetic band, rim edges of the facet size let the mesh lose 35 % of its volume at 6 mm.
-  const double feature_edge_mm =
-      std::min(result.used.facet_size_mm, characteristic_thickness(surface));
+  const double feature_edge_mm = std::min(result.used.facet_size_mm, thickness);
   result.mesh = mesh_with_cgal(surface, features, feature_edge_mm, result.used);
   if (result.mesh.T.rows() == 0)
     fail("tetmesh: Mesh_3 produced no tetrahedra (cell size {} mm, facet size {} mm, facet "
