@@ -49,6 +49,9 @@ bool TomlTable::has(const std::string& key) const
 std::string TomlTable::location(const std::string& key) const
 {
   const toml::node* found = m_table->get(key);
+  // A key set on the command line (--set) is named by its assignment, not by the file.
+  if (found && found->source().path && *found->source().path != m_file)
+    return *found->source().path;
   const auto line = found ? found->source().begin.line : 0;
   return line > 0 ? fmt::format("{}:{}", m_file, line) : m_file;
 }

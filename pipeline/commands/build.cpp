@@ -6,6 +6,7 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "common/toml_overrides.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/commands/anatomy_outputs.hpp"
 #include "pipeline/reports/knee_reports.hpp"
@@ -38,6 +39,7 @@ constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
 /// Command-line flags of `build` and of every stage subcommand; each overrides the config file.
 struct BuildOptions {
   std::string config, surface, femur, tibia, out;
+  std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the config
   std::string labels, colour_table, ligament_label, femur_label, tibia_label;
   std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
   std::vector<int> femur_indices, tibia_indices;
@@ -55,6 +57,9 @@ void add_options(CLI::App* command, BuildOptions& o)
       ->add_option("--config", o.config,
                    "TOML file with every parameter (docs/build.md); flags override it")
       ->check(CLI::ExistingFile);
+  command->add_option("--set", o.set, kSetHelp)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command->add_option("--surface", o.surface,
                       "ligament surface: .stl, .obj, .ply, .vtp or .vtk (mm), or .glb/.gltf "
                       "(metres) with #MESH to choose one of several meshes");
@@ -197,7 +202,9 @@ void apply_stage_flags(const BuildOptions& o, BuildConfig& config)
 
 BuildConfig resolve_config(const BuildOptions& o)
 {
-  BuildConfig config = o.config.empty() ? BuildConfig{} : pipeline::load_build_config(o.config);
+  BuildConfig config = o.config.empty() && o.set.empty()
+                           ? BuildConfig{}
+                           : pipeline::load_build_config(o.config, o.set);
   if (!o.surface.empty())
     config.surface = o.surface;
   if (!o.femur.empty())
@@ -268,8 +275,8 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
   const fs::path out = o.out;
   // Surfaces from a label map are written only once all of them could be made.
   nlohmann::json label_report;
-  pipeline::KneeConfig knee =
-      pipeline::knee_surfaces_from_labels(pipeline::load_knee_config(o.config), out, label_report);
+  pipeline::KneeConfig knee = pipeline::knee_surfaces_from_labels(
+      pipeline::load_knee_config(o.config, o.set), out, label_report);
   pipeline::add_anatomy_parts(knee);
   // Every input is read before a stage runs, so that bad input leaves nothing behind.
   nlohmann::json bone_repair = nlohmann::json::object();
@@ -297,7 +304,7 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
   }
 
   RunSummary summary(target == "model" ? "build" : target);
-  summary.inputs() = {{"config", o.config}, {"knee", true}};
+  summary.inputs() = {{"config", o.config}, {"set", o.set}, {"knee", true}};
   summary.parameters() = pipeline::to_json(knee);
   summary.results()["surface_repair"] = repairs;
   summary.results()["bone_repair"] = bone_repair;
@@ -416,6 +423,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
 
   RunSummary summary(target == "model" ? "build" : target);
   summary.inputs() = {{"config", o.config},
+                      {"set", o.set},
                       {"surface", config.surface.string()},
                       {"femur", config.femur.string()},
                       {"tibia", config.tibia.string()},

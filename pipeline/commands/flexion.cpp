@@ -246,6 +246,8 @@ void run_flexion(const FlexionJobOptions& options)
   summary.inputs()["model"] = settings.model_dir.string();
   if (!options.flexion.config.empty())
     summary.inputs()["config"] = options.flexion.config.string();
+  if (!options.flexion.set.empty())
+    summary.inputs()["set"] = options.flexion.set;
   const std::vector<sim::LigamentModel> whole =
       sim::load_knee(settings.model_dir, settings.ligament.name);
   std::vector<sim::LigamentModel> ligaments = sim::chosen_ligaments(whole, settings);

@@ -1,6 +1,7 @@
 #include "pipeline/commands/flexion_options.hpp"
 
 #include "common/error.hpp"
+#include "common/toml_overrides.hpp"
 #include "sim/flexion/flexion_config.hpp"
 
 #include <CLI/CLI.hpp>
@@ -9,17 +10,16 @@ namespace ligsim::cli {
 
 namespace {
 
-/// `--load KEY=VALUE`s, read as a [loads] table so that they meet the config's checks.
-void read_load_flags(const std::vector<std::string>& loads, sim::FlexionSettings& settings)
+/// `--load KEY=VALUE`s as settings of [loads], so that they meet the config's checks.
+std::vector<std::string> load_overrides(const std::vector<std::string>& loads)
 {
-  std::string table = "[loads]\n";
+  std::vector<std::string> overrides;
   for (const std::string& load : loads) {
-    const std::size_t equals = load.find('=');
-    if (equals == std::string::npos || load.find_first_of("[]\n\"") != std::string::npos)
+    if (load.find('=') == std::string::npos)
       fail("--load {}: expected KEY=VALUE, e.g. --load anterior_n=134", load);
-    table += load.substr(0, equals) + " = " + load.substr(equals + 1) + "\n";
+    overrides.push_back("loads." + load);
   }
-  sim::parse_flexion_config(table, {}, "--load", settings);
+  return overrides;
 }
 
 } // namespace
@@ -28,6 +28,9 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
 {
   command.add_option("--config", options.config, "flexion config (.toml); flags override it")
       ->check(CLI::ExistingFile);
+  command.add_option("--set", options.set, kSetHelp)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command.add_option("--model", options.model, "output folder of `ligsim build`");
   command.add_option("--angles", options.angles, "flexion angles, deg (default 0,15,...,90)")
       ->delimiter(',');
@@ -75,8 +78,11 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
 sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const std::string& job)
 {
   sim::FlexionSettings settings;
-  if (!options.config.empty())
-    sim::read_flexion_config(options.config, settings);
+  std::vector<std::string> overrides = options.set;
+  for (const std::string& load : load_overrides(options.loads))
+    overrides.push_back(load);
+  if (!options.config.empty() || !overrides.empty())
+    sim::read_flexion_config(options.config, settings, overrides);
   if (!options.model.empty())
     settings.model_dir = options.model;
   if (settings.model_dir.empty())
@@ -106,8 +112,6 @@ sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const 
     settings.ligaments = options.ligaments;
   if (!options.without.empty())
     settings.without = options.without;
-  if (!options.loads.empty())
-    read_load_flags(options.loads, settings);
   if (options.speed)
     settings.interactive.angular_speed_deg_s = *options.speed;
   if (options.time_step)

@@ -17,6 +17,7 @@ namespace ligsim::cli {
 
 struct FlexionOptions {
   std::filesystem::path config;
+  std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the config
   std::filesystem::path model;
   std::vector<double> angles;
   std::string mode;
@@ -31,7 +32,7 @@ struct FlexionOptions {
   std::vector<std::string> loads;     ///< a free knee's loads, "KEY=VALUE" over [loads]
 };
 
-/// Adds --config, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to
+/// Adds --config, --set, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to
 /// `command`; with `interactive` also --mode, --speed and --time-step.
 void add_flexion_options(CLI::App& command, FlexionOptions& options, bool interactive);
 

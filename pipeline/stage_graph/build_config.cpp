@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "common/knee_manifest.hpp"
+#include "common/toml_overrides.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
 #include "pipeline/stage_graph/ligament_defaults.hpp"
@@ -14,15 +15,20 @@ namespace fs = std::filesystem;
 
 namespace config_reading {
 
-toml::table parse_config_file(const fs::path& file)
+toml::table parse_config_file(const fs::path& file, const std::vector<std::string>& overrides)
 {
-  if (!fs::is_regular_file(file))
-    fail("missing config file '{}'", file.string());
-  try {
-    return toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    fail("{}:{}: {}", file.string(), e.source().begin.line, e.description());
+  toml::table root;
+  if (!file.empty()) {
+    if (!fs::is_regular_file(file))
+      fail("missing config file '{}'", file.string());
+    try {
+      root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+      fail("{}:{}: {}", file.string(), e.source().begin.line, e.description());
+    }
   }
+  apply_overrides(root, overrides);
+  return root;
 }
 
 void read_stage_sections(const toml::table& table, const std::string& prefix, const fs::path& file,
@@ -109,9 +115,9 @@ void read_material_section(const toml::table& table, const std::string& prefix,
 
 using namespace config_reading;
 
-BuildConfig load_build_config(const fs::path& file)
+BuildConfig load_build_config(const fs::path& file, const std::vector<std::string>& overrides)
 {
-  const toml::table root = parse_config_file(file);
+  const toml::table root = parse_config_file(file, overrides);
   if (root.contains("ligament"))
     fail("{}: this config describes a knee ([[ligament]] tables): `ligsim build` takes it; "
          "this command takes one ligament's config",

@@ -18,6 +18,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace ligsim::pipeline {
 
@@ -121,10 +122,12 @@ std::string part_of_surface(const std::filesystem::path& surface);
 /// footprints); returns where they come from, or nothing when the part has none.
 std::string apply_part_defaults(BuildConfig& config);
 
-/// Reads a TOML config (every key: docs/build.md). Relative paths are relative to the file's
-/// folder. Throws InputError with the file, line and key on a syntax error, an unknown key or a
-/// value of the wrong type.
-BuildConfig load_build_config(const std::filesystem::path& file);
+/// Reads a TOML config (every key: docs/build.md) with `overrides` ("table.key=value", the
+/// command line's --set) over it; no file: the overrides alone. Relative paths are relative to
+/// the file's folder. Throws InputError with the file, line and key (or the --set) on a syntax
+/// error, an unknown key or a value of the wrong type.
+BuildConfig load_build_config(const std::filesystem::path& file,
+                              const std::vector<std::string>& overrides = {});
 
 /// The parameters one stage depends on, as JSON (for summary.json and the cache key).
 nlohmann::json stage_parameters(const BuildConfig& config, const std::string& stage);

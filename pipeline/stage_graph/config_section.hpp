@@ -157,8 +157,9 @@ std::string read_attachment_sections(const toml::table& table, const std::string
 void read_material_section(const toml::table& table, const std::string& prefix,
                            const fs::path& file, BuildConfig& config);
 
-/// Parses a TOML file; a syntax error is an InputError with the file and line.
-toml::table parse_config_file(const fs::path& file);
+/// Parses a TOML file (none: an empty table) with the command line's `--set`s over it; a syntax
+/// error is an InputError with the file and line.
+toml::table parse_config_file(const fs::path& file, const std::vector<std::string>& overrides = {});
 
 } // namespace config_reading
 

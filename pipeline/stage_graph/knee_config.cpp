@@ -139,9 +139,9 @@ bool is_knee_config(const fs::path& file)
   return parse_config_file(file).contains("ligament");
 }
 
-KneeConfig load_knee_config(const fs::path& file)
+KneeConfig load_knee_config(const fs::path& file, const std::vector<std::string>& overrides)
 {
-  const toml::table root = parse_config_file(file);
+  const toml::table root = parse_config_file(file, overrides);
   KneeConfig knee;
   knee.file = file;
   Section top(&root, "top level", file);

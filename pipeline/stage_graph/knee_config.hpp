@@ -47,7 +47,9 @@ bool is_knee_config(const std::filesystem::path& file);
 /// Reads a knee config (surface files, or a label map with every part's label). Relative paths are
 /// relative to the file's folder. Throws InputError with the file, line and key on a syntax error,
 /// an unknown key, a value of the wrong type, a ligament without name or surface, two ligaments of
-/// one name, or a footprint on a bone the config does not give.
-KneeConfig load_knee_config(const std::filesystem::path& file);
+/// one name, or a footprint on a bone the config does not give. `overrides` as for
+/// load_build_config (over [[ligament]] tables, they set every ligament).
+KneeConfig load_knee_config(const std::filesystem::path& file,
+                            const std::vector<std::string>& overrides = {});
 
 } // namespace ligsim::pipeline

@@ -1,6 +1,7 @@
 #include "sim/flexion/flexion_config.hpp"
 
 #include "common/error.hpp"
+#include "common/toml_overrides.hpp"
 #include "common/toml_table.hpp"
 #include "sim/scene/contact_table.hpp"
 
@@ -191,12 +192,10 @@ void read_contact(TomlTable& table, ContactConfig& contact)
   table.reject_unknown_keys();
 }
 
-} // namespace
-
-void parse_flexion_config(const std::string& text, const fs::path& base, const std::string& name,
-                          FlexionSettings& settings)
+/// Reads the parsed config `document` over `settings`.
+void read_document(const toml::table& document, const fs::path& base, const std::string& name,
+                   FlexionSettings& settings)
 {
-  const toml::table document = parse_toml(text, name);
   TomlTable root(document, name);
   if (root.has("model"))
     settings.model_dir = base / root.text("model", "");
@@ -243,10 +242,22 @@ void parse_flexion_config(const std::string& text, const fs::path& base, const s
   root.reject_unknown_keys();
 }
 
-void read_flexion_config(const fs::path& file, FlexionSettings& settings)
+} // namespace
+
+void parse_flexion_config(const std::string& text, const fs::path& base, const std::string& name,
+                          FlexionSettings& settings)
 {
-  parse_flexion_config(read_text_file(file, "flexion config"), file.parent_path(), file.string(),
-                       settings);
+  read_document(parse_toml(text, name), base, name, settings);
+}
+
+void read_flexion_config(const fs::path& file, FlexionSettings& settings,
+                         const std::vector<std::string>& overrides)
+{
+  toml::table document;
+  if (!file.empty())
+    document = parse_toml(read_text_file(file, "flexion config"), file.string());
+  apply_overrides(document, overrides);
+  read_document(document, file.parent_path(), file.empty() ? "--set" : file.string(), settings);
 }
 
 } // namespace ligsim::sim

@@ -140,6 +140,19 @@ TEST(Build, SyntheticBandWithCacheReuse)
     EXPECT_EQ(after.at(stage), "reused") << stage;
   for (const char* stage : {"centerline", "field", "fibers", "model"})
     EXPECT_EQ(after.at(stage), "ran") << stage;
+
+  // --set reaches the same key as the flag: the same parameters, every stage reused.
+  ASSERT_EQ(run_ligsim("build " + inputs + " --set centerline.alpha=0.5").exit_code, 0);
+  for (const auto& [name, status] : statuses(read_summary(out)))
+    EXPECT_EQ(status, "reused") << name;
+  EXPECT_EQ(read_summary(out)["inputs"]["set"][0], "centerline.alpha=0.5");
+  // A misspelt key is refused, named, before anything is written.
+  const CliResult misspelt = run_ligsim("build " + inputs + " --set centerline.alfa=0.5");
+  EXPECT_NE(misspelt.exit_code, 0);
+  EXPECT_NE(misspelt.stderr_text.find("--set centerline.alfa=0.5: unknown key 'alfa'"),
+            std::string::npos)
+      << misspelt.stderr_text;
+  EXPECT_EQ(read_summary(out)["inputs"]["set"][0], "centerline.alpha=0.5");
 }
 
 /// The bound footprint areas (the model stage's `footprint_area_mm2`) of the band built with

@@ -151,6 +151,9 @@ TEST(FlexionCli, BadInputsAreRejectedBeforeAnythingIsWritten)
   expect_rejected(model + " " + flexion_axis_argument(band_model()) + " --angles 0,45,30",
                   "increase");
   expect_rejected(model, "posterior direction"); // no axis and nothing to fit it with
+  expect_rejected(model + " " + flexion_axis_argument(band_model()) +
+                      " --set static.max_iteration=5",
+                  "--set static.max_iteration=5: unknown key 'max_iteration' in [static]");
 
   const fs::path config = fresh_folder("flexion_empty_angles.toml");
   std::ofstream(config) << "angles_deg = []\n";
@@ -180,11 +183,11 @@ TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsTh
   const CliResult built =
       run_ligsim("build --config " + config.string() + " --out " + model.string());
   ASSERT_EQ(built.exit_code, 0) << built.stderr_text;
-  const auto sweep = [&](const std::string& flexion_config) {
+  const auto sweep = [&](const std::string& flexion_config, const std::string& flags = "") {
     const fs::path out = fresh_folder("flexion_material");
     std::string arguments = "flexion --model " + model.string() + " " +
                             flexion_axis_argument(band_model()) +
-                            " --angles 0,15 --no-images --out " + out.string();
+                            " --angles 0,15 --no-images --out " + out.string() + " " + flags;
     if (!flexion_config.empty()) {
       const fs::path file = fresh_folder("flexion_material.toml");
       std::ofstream(file) << flexion_config;
@@ -207,6 +210,10 @@ TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsTh
   EXPECT_EQ(set["material"]["mu_mpa"].get<double>(), 27.7);
   EXPECT_EQ(set["material"]["convention"].get<std::string>(), "paper");
   EXPECT_NEAR(set["in_situ_strain"].get<double>(), 0.05, 1e-12);
+  // The same key set on the command line, without a config file.
+  const nlohmann::json flag = sweep("", "--set material.c4=50.0");
+  EXPECT_EQ(flag["material"]["mu_mpa"].get<double>(), 27.7);
+  EXPECT_EQ(flag["material"]["c4"].get<double>(), 50.0);
 }
 
 TEST(FlexionCli, RealMclSweepsToNinetyDegrees)
