@@ -13,24 +13,19 @@
 set -euo pipefail
 OUT=$1
 ROUNDS=${2:-3}
-SRC=$(cd "$(dirname "$0")/../.." && pwd)
+# shellcheck source=tests/bench/timed_runs.sh
+source "$(dirname "$0")/timed_runs.sh"
 FEBIO=${FEBIO:-$SRC/../shared/tools/febio/bin/febio4}
-LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
 BEFORE=${BEFORE:-}
 if [ ! -x "$FEBIO" ]; then
   echo "cube_vs_febio.sh: no FEBio executable at $FEBIO (set FEBIO)" >&2
   exit 2
 fi
-mkdir -p "$OUT"
-OUT=$(cd "$OUT" && pwd)
 "$SRC/tests/bench/febio_cube.py" par_t020_pen "$OUT/cube.feb"
-
-# shellcheck source=tests/bench/timed_runs.sh
-source "$SRC/tests/bench/timed_runs.sh"
 
 rm -f "$OUT"/*.times
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-for round in $(seq "$ROUNDS"); do
+for _ in $(seq "$ROUNDS"); do
   (cd "$OUT" && run febio env OMP_NUM_THREADS=2 "$FEBIO" -i cube.feb -silent)
   grep -q "N O R M A L" "$OUT/cube.log" ||
     { echo "cube_vs_febio.sh: FEBio did not terminate normally, see $OUT/cube.log" >&2; exit 1; }

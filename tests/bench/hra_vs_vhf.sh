@@ -12,13 +12,9 @@
 set -euo pipefail
 OUT=$1
 ROUNDS=${2:-3}
-SRC=$(cd "$(dirname "$0")/../.." && pwd)
-LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
-mkdir -p "$OUT"
-OUT=$(cd "$OUT" && pwd)
 
 # shellcheck source=tests/bench/timed_runs.sh
-source "$SRC/tests/bench/timed_runs.sh"
+source "$(dirname "$0")/timed_runs.sh"
 fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['frames_per_second'])" "$1"; }
 tets() { python3 -c "import json,sys; [l] = json.load(open(sys.argv[1]))['results']['ligaments'].values(); print(l['setup']['tets'])" "$1"; }
 
@@ -27,7 +23,7 @@ cd "$SRC"
 run build_hra "$LIGSIM" build --config data/hra-knee/mcl-female.toml --out "$OUT/hra"
 run build_vhf "$LIGSIM" build --config data/vhf-right-knee/mcl.toml --out "$OUT/vhf"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-for round in $(seq "$ROUNDS"); do
+for _ in $(seq "$ROUNDS"); do
   for knee in hra vhf; do
     config=data/hra-knee/flexion.toml
     [ $knee = vhf ] && config=data/vhf-right-knee/flexion.toml

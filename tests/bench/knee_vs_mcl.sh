@@ -12,20 +12,15 @@
 set -euo pipefail
 OUT=$1
 ROUNDS=${2:-3}
-SRC=$(cd "$(dirname "$0")/../.." && pwd)
-LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
-CONTACT=${CONTACT:-on}
-mkdir -p "$OUT"
-OUT=$(cd "$OUT" && pwd)
 
 # shellcheck source=tests/bench/timed_runs.sh
-source "$SRC/tests/bench/timed_runs.sh"
+source "$(dirname "$0")/timed_runs.sh"
 fps() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['results']['frames_per_second'])" "$1"; }
 
 rm -f "$OUT"/*.times "$OUT"/*.fps
 cd "$SRC"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-for round in $(seq "$ROUNDS"); do
+for _ in $(seq "$ROUNDS"); do
   run build_knee "$LIGSIM" build --config data/hra-knee/knee.toml --out "$OUT/knee" --force
   run build_mcl "$LIGSIM" build --config data/hra-knee/mcl-female.toml --out "$OUT/mcl" --force
   for model in knee mcl; do

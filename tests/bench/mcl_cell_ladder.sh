@@ -13,14 +13,9 @@ OUT=$1
 shift
 CELLS=("$@")
 [ ${#CELLS[@]} -gt 0 ] || CELLS=(2.4 1.8 1.2 0.9)
-SRC=$(cd "$(dirname "$0")/../.." && pwd)
-LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
-CONTACT=${CONTACT:-on}
-mkdir -p "$OUT"
-OUT=$(cd "$OUT" && pwd)
 
 # shellcheck source=tests/bench/timed_runs.sh
-source "$SRC/tests/bench/timed_runs.sh"
+source "$(dirname "$0")/timed_runs.sh"
 
 cd "$SRC"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"

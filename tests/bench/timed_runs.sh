@@ -1,9 +1,18 @@
-# Shared by the side-by-side benchmark scripts (sourced once OUT is set):
+# shellcheck shell=bash
+# Shared by the side-by-side benchmark scripts (sourced once OUT is set). Sets SRC (the source
+# tree), LIGSIM (default build/pipeline/ligsim) and CONTACT (default on), and makes OUT an
+# absolute path to a folder that exists. Then:
 #   run NAME COMMAND...  runs COMMAND, its output in OUT/NAME.out, and appends "wall_s peak_kib"
 #                        (/usr/bin/time) to OUT/NAME.times; stops the script if it fails.
 #   median               the median of the numbers on stdin, one per line.
 #   compare_row LABEL A B  a table row: the median wall seconds of runs A and B, their ratio
 #                        A / B, and their median peak MiB.
+
+SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+LIGSIM=${LIGSIM:-$SRC/build/pipeline/ligsim}
+CONTACT=${CONTACT:-on}
+mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
 
 run() {
   local name=$1
