@@ -3,6 +3,7 @@
 /// adding `key = 1` to its table of a valid base file: the readers answer an unknown key with
 /// "unknown key 'key'", and anything else (success, or an error about the value) means the reader
 /// knows it. Candidates for keys nobody documented are the string literals of the readers' source.
+/// The build table's literal defaults are checked against the parameters' declarations.
 /// Conventions of the tables: docs/development.md, "Documentation that stays true".
 
 #include "common/error.hpp"
@@ -12,6 +13,7 @@
 #include "sim/scene/scene.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 #include <unistd.h>
 
@@ -64,7 +66,8 @@ std::string read_file(const fs::path& file)
 /// One documented key, and where it is written.
 struct DocumentedKey {
   KeyPath path;
-  std::string where; ///< "docs/build.md:123"
+  std::string where;        ///< "docs/build.md:123"
+  std::string default_text; ///< the row's default cell
 };
 
 /// The rows of every table that follows `<!-- config-keys: READER -->` in docs/*.md, by reader.
@@ -117,10 +120,12 @@ std::map<std::string, std::vector<DocumentedKey>> documented_keys()
             }
           tables = expanded;
         }
+      const std::vector<std::string> cells = split(line, '|');
+      const std::string default_text = cells.size() > 3 ? cells[3] : "";
       for (KeyPath path : tables) {
         for (const std::string& part : split(match[2], '.'))
           path.push_back(part);
-        keys[reader].push_back({path, where});
+        keys[reader].push_back({path, where, default_text});
       }
     }
   }
@@ -506,6 +511,59 @@ TEST_P(ConfigKeys, EveryAcceptedKeyIsDocumented)
       }
     }
   }
+}
+
+/// A default cell's value as TOML where it is a literal: a number, true or false, or `word`,
+/// alone or before a colon ("0: thickness / 8"); empty otherwise ("none", a description).
+std::string literal_default(const std::string& cell)
+{
+  static const std::regex trimmed(R"(^\s+|\s+$)");
+  const std::string text = std::regex_replace(cell.substr(0, cell.find(':')), trimmed, "");
+  static const std::regex number(R"(^-?[0-9]+(\.[0-9]+)?(e-?[0-9]+)?$)");
+  static const std::regex word(R"(^`([a-z0-9_]+)`$)");
+  std::smatch match;
+  if (std::regex_match(text, number) || text == "true" || text == "false")
+    return text;
+  if (std::regex_match(text, match, word))
+    return "\"" + match[1].str() + "\"";
+  return "";
+}
+
+TEST(ConfigKeyDefaults, TheBuildGuidesDefaultsAreTheBuildConfigsOwn)
+{
+  // The defaults live once, in the parameters' declarations: a key set to the default the guide
+  // gives it must leave the whole config (summary.json's parameters) as it was.
+  const std::string base = readers().front().bases.front();
+  const auto parameters = [](const std::string& text) {
+    write_text(scratch_folder() / "defaults.toml", text);
+    return ligsim::pipeline::to_json(
+        ligsim::pipeline::load_build_config(scratch_folder() / "defaults.toml"));
+  };
+  const nlohmann::json unset = parameters(base);
+  int checked = 0;
+  const std::map<std::string, std::vector<DocumentedKey>> documented = documented_keys();
+  for (const DocumentedKey& key : documented.at("build")) {
+    const std::string value = literal_default(key.default_text);
+    const KeyPath table_path(key.path.begin(), key.path.end() - 1);
+    toml::table document = toml::parse(base);
+    toml::table* table = table_at(document, table_path);
+    if (value.empty() || table == nullptr)
+      continue; // no literal default, or a table the key tests above report
+    const toml::table literal = toml::parse("v = " + value);
+    table->insert_or_assign(key.path.back(), *literal.get("v"));
+    std::ostringstream text;
+    text << document << "\n";
+    // As text: unset points are NaN, which equals nothing, and null in the text.
+    const nlohmann::json set = parameters(text.str());
+    EXPECT_TRUE(set.dump() == unset.dump())
+        << key.where << ": the guide gives `" << joined(key.path) << "` the default " << value
+        << ", but setting it changes "
+        << nlohmann::json::diff(nlohmann::json::parse(unset.dump()),
+                                nlohmann::json::parse(set.dump()))
+               .dump();
+    ++checked;
+  }
+  EXPECT_GE(checked, 40) << "too few literal defaults found: is the table still parsed?";
 }
 
 INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeys, ::testing::Values("build", "flexion", "scene", "tear"),
