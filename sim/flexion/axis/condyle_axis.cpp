@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <unsupported/Eigen/LevenbergMarquardt>
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,7 @@ constexpr double kMaxTurnDeg = 45.0;       // fitted axis against proximal x pos
 constexpr double kMaxRadiusPerSize = 10.0; // radius against the candidates' extent
 constexpr int kMinPoints = 12;
 constexpr int kMaxTrimRounds = 30;
-constexpr int kMaxLmIterations = 200;
+constexpr int kMaxLmEvaluations = 400;
 
 double deg(double radians)
 {
@@ -125,87 +126,99 @@ Eigen::VectorXd cylinder_residuals(const Points& Q, const Cylinder& cylinder)
   return d;
 }
 
-/// Levenberg-Marquardt on the points flagged in `kept`. Parameters: the axis turned by
-/// (alpha, beta) about the frame (u, v) perpendicular to it, the point moved by (s, t) along
-/// (u, v), the radius. The frame is rebuilt and the point re-projected after every step, so the
-/// parametrisation never degenerates. Returns false if it does not converge.
-bool levenberg_marquardt(const Points& Q, const std::vector<char>& kept, double length_scale,
-                         Cylinder& cylinder, int& iterations)
+/// The kept points' distances to a cylinder, for MINPACK's Levenberg-Marquardt (Eigen's port).
+/// Parameters: the start axis a0 turned by (alpha, beta) along the frame (u, v) perpendicular to
+/// it, axis = (a0 + alpha u + beta v) / |.|, the start point moved by (s, t) along (u, v), the
+/// radius. The fit turns the axis by a few degrees at most, far from the parametrisation's pole.
+class CylinderDistances : public Eigen::DenseFunctor<double> {
+public:
+  CylinderDistances(const Points& Q, const std::vector<Eigen::Index>& rows, const Cylinder& start)
+      : Eigen::DenseFunctor<double>(5, static_cast<int>(rows.size()))
+      , m_Q(Q)
+      , m_rows(rows)
+      , m_start(start)
+  {
+    complete_frame(start.axis, m_u, m_v);
+  }
+
+  Cylinder cylinder(const InputType& x) const
+  {
+    Cylinder c;
+    c.axis = (m_start.axis + x(0) * m_u + x(1) * m_v).normalized();
+    c.point = m_start.point + x(2) * m_u + x(3) * m_v; // on the axis, not yet perpendicular
+    c.radius = m_start.radius + x(4);
+    return c;
+  }
+
+  int operator()(const InputType& x, ValueType& distances) const
+  {
+    const Cylinder c = cylinder(x);
+    for (std::size_t k = 0; k < m_rows.size(); ++k)
+      distances(static_cast<Eigen::Index>(k)) = radial(c, k).norm() - c.radius;
+    return 0;
+  }
+
+  int df(const InputType& x, JacobianType& jacobian) const
+  {
+    const Cylinder c = cylinder(x);
+    const Eigen::Vector3d n = m_start.axis + x(0) * m_u + x(1) * m_v;
+    // d axis / d alpha: u's part perpendicular to the axis over |n|; likewise for beta.
+    const Eigen::Vector3d du = (m_u - c.axis.dot(m_u) * c.axis) / n.norm();
+    const Eigen::Vector3d dv = (m_v - c.axis.dot(m_v) * c.axis) / n.norm();
+    for (std::size_t k = 0; k < m_rows.size(); ++k) {
+      const Eigen::Vector3d r = radial(c, k);
+      const double distance = r.norm();
+      const auto row = static_cast<Eigen::Index>(k);
+      if (distance == 0.0) { // on the axis: no defined derivative, and far from any sensible fit
+        jacobian.row(row).setZero();
+        continue;
+      }
+      const Eigen::Vector3d e = r / distance;
+      const double along = (m_Q.row(m_rows[k]).transpose() - c.point).dot(c.axis);
+      // d distance / d axis = -along e; d distance / d point = -e (both along e's direction).
+      jacobian.row(row) << -along * e.dot(du), -along * e.dot(dv), -e.dot(m_u), -e.dot(m_v), -1.0;
+    }
+    return 0;
+  }
+
+private:
+  /// Point k's offset from the axis, perpendicular to it.
+  Eigen::Vector3d radial(const Cylinder& c, std::size_t k) const
+  {
+    const Eigen::Vector3d w = m_Q.row(m_rows[k]).transpose() - c.point;
+    return w - w.dot(c.axis) * c.axis;
+  }
+
+  const Points& m_Q;
+  const std::vector<Eigen::Index>& m_rows;
+  Cylinder m_start;
+  Eigen::Vector3d m_u, m_v;
+};
+
+/// The geometric least-squares cylinder through the points flagged in `kept`, from `cylinder`.
+/// False when MINPACK's Levenberg-Marquardt gives up (out of evaluations, or bad input); its
+/// stops at round-off (no further reduction possible) count as converged.
+bool fit_cylinder(const Points& Q, const std::vector<char>& kept, Cylinder& cylinder,
+                  int& iterations)
 {
   std::vector<Eigen::Index> rows;
   for (Eigen::Index i = 0; i < Q.rows(); ++i)
     if (kept[static_cast<std::size_t>(i)])
       rows.push_back(i);
-  const auto cost_of = [&](const Cylinder& c) {
-    double cost = 0.0;
-    for (const Eigen::Index i : rows) {
-      const Eigen::Vector3d w = Q.row(i).transpose() - c.point;
-      const double d = (w - w.dot(c.axis) * c.axis).norm() - c.radius;
-      cost += d * d;
-    }
-    return cost;
-  };
-  double cost = cost_of(cylinder);
-  double lambda = 1e-3;
-  for (int iteration = 0; iteration < kMaxLmIterations; ++iteration) {
-    ++iterations;
-    Eigen::Vector3d u, v;
-    complete_frame(cylinder.axis, u, v);
-    Eigen::Matrix<double, 5, 5> H = Eigen::Matrix<double, 5, 5>::Zero();
-    Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
-    for (const Eigen::Index i : rows) {
-      const Eigen::Vector3d w = Q.row(i).transpose() - cylinder.point;
-      const double along = w.dot(cylinder.axis);
-      const Eigen::Vector3d radial = w - along * cylinder.axis;
-      const double distance = radial.norm();
-      if (distance == 0.0)
-        continue; // on the axis: no defined derivative, and far from any sensible fit
-      const Eigen::Vector3d e = radial / distance;
-      // d(distance)/d(axis turn q) = -along (e . q); d/d(point move q) = -(e . q).
-      Eigen::Matrix<double, 5, 1> J;
-      J << -along * e.dot(u), -along * e.dot(v), -e.dot(u), -e.dot(v), -1.0;
-      const double residual = distance - cylinder.radius;
-      H.selfadjointView<Eigen::Lower>().rankUpdate(J);
-      g += J * residual;
-    }
-    H = H.selfadjointView<Eigen::Lower>();
-    // Converged when the step that would zero the gradient is at round-off of the size.
-    bool accepted = false;
-    while (!accepted) {
-      Eigen::Matrix<double, 5, 5> A = H;
-      for (int k = 0; k < 5; ++k)
-        A(k, k) += lambda * std::max(H(k, k), 1e-12 * (1.0 + H.diagonal().maxCoeff()));
-      const Eigen::Matrix<double, 5, 1> step = A.ldlt().solve(-g);
-      if (!step.allFinite())
-        return false;
-      Cylinder trial;
-      trial.axis = (cylinder.axis + step(0) * u + step(1) * v).normalized();
-      trial.point = cylinder.point + step(2) * u + step(3) * v;
-      trial.point -= trial.point.dot(trial.axis) * trial.axis;
-      trial.radius = cylinder.radius + step(4);
-      const double step_mm =
-          std::max({std::abs(step(0)) * length_scale, std::abs(step(1)) * length_scale,
-                    std::abs(step(2)), std::abs(step(3)), std::abs(step(4))});
-      const double trial_cost = cost_of(trial);
-      if (trial_cost <= cost) {
-        const bool tiny = step_mm <= 1e-12 * length_scale || cost - trial_cost <= 1e-15 * cost;
-        cylinder = trial;
-        cost = trial_cost;
-        lambda = std::max(lambda / 10.0, 1e-12);
-        accepted = true;
-        if (!(cylinder.radius < kMaxRadiusPerSize * length_scale))
-          return false; // running off to a plane
-        if (tiny)
-          return true;
-      } else {
-        lambda *= 10.0;
-        // No descent even along the scaled gradient: a minimum to round-off.
-        if (lambda > 1e12 || step_mm <= 1e-12 * length_scale)
-          return true;
-      }
-    }
-  }
-  return false;
+  CylinderDistances distances(Q, rows, cylinder);
+  Eigen::LevenbergMarquardt<CylinderDistances> lm(distances);
+  lm.setXtol(1e-12);
+  lm.setFtol(1e-15);
+  lm.setMaxfev(kMaxLmEvaluations);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(5);
+  const Eigen::LevenbergMarquardtSpace::Status status = lm.minimize(x);
+  iterations += static_cast<int>(lm.njev()); // one Jacobian per iteration
+  if (!x.allFinite())
+    return false;
+  cylinder = distances.cylinder(x);
+  cylinder.point -= cylinder.point.dot(cylinder.axis) * cylinder.axis;
+  return status != Eigen::LevenbergMarquardtSpace::ImproperInputParameters &&
+         status != Eigen::LevenbergMarquardtSpace::TooManyFunctionEvaluation;
 }
 
 double median(std::vector<double> values)
@@ -325,15 +338,15 @@ CondyleAxisFit fit_condyle_axis(const TriangleSurface& femur, const Eigen::Vecto
            "need at least {}",
            std::count(kept.begin(), kept.end(), 1), candidate_count, kMinPoints);
     ++fit.trimming_rounds;
-    const bool converged = levenberg_marquardt(Q, kept, length_scale, cylinder, fit.iterations);
+    const bool converged = fit_cylinder(Q, kept, cylinder, fit.iterations);
     if (!(cylinder.radius < kMaxRadiusPerSize * length_scale))
       fail("flexion axis: the posterior femur surface is too flat for a condyle (the cylinder "
            "radius grew past {:.3g} mm on {} vertices)",
            kMaxRadiusPerSize * length_scale, candidate_count);
     if (!converged)
       fail("flexion axis: the cylinder fit to {} posterior condyle vertices did not converge in "
-           "{} iterations",
-           std::count(kept.begin(), kept.end(), 1), kMaxLmIterations);
+           "{} evaluations",
+           std::count(kept.begin(), kept.end(), 1), kMaxLmEvaluations);
     if (!(cylinder.radius > 0.0) || !cylinder.point.allFinite() || !cylinder.axis.allFinite())
       fail("flexion axis: the cylinder fit to the posterior condyles degenerated (radius {:.3g} "
            "mm)",
