@@ -6,9 +6,10 @@
 /// Candidates: vertices of the distal 50 mm, in the posterior half of that slab, whose normal
 /// lies 15-165 degrees from distal toward posterior and within 45 degrees of the sagittal plane.
 /// Start: axis = proximal x posterior, centre and radius from p_i - r n_i = centre (linear least
-/// squares). Then Levenberg-Marquardt on the point-to-cylinder distances (axis 2 dof, point on it
-/// 2 dof, radius), alternated with trimming to the points within 2.5 robust sigmas (1.4826
-/// median |residual|) until the kept set is stable: notch, trochlea and sides drop out.
+/// squares). Then MINPACK's Levenberg-Marquardt (Eigen's unsupported module) on the
+/// point-to-cylinder distances (axis 2 dof, point on it 2 dof, radius), alternated with trimming to
+/// the points within 2.5 robust sigmas (1.4826 median |residual|) until the kept set is stable:
+/// notch, trochlea and sides drop out.
 
 #include "common/mesh.hpp"
 
