@@ -4,6 +4,7 @@
 #include "common/error.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
+#include "common/toml_overrides.hpp"
 #include "sim/scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ligsim::cli {
 
@@ -22,13 +24,16 @@ namespace {
 struct SimulateOptions {
   fs::path scene;
   fs::path out;
+  std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the scene
 };
 
 void run_simulate(const SimulateOptions& options)
 {
   RunSummary summary("simulate");
   summary.inputs()["scene"] = options.scene.string();
-  const sim::Scene scene = sim::load_scene(options.scene);
+  if (!options.set.empty())
+    summary.inputs()["set"] = options.set;
+  const sim::Scene scene = sim::load_scene(options.scene, options.set);
   summary.inputs()["mesh"] = scene.mesh_source;
   nlohmann::json& parameters = summary.parameters();
   parameters["kind"] = scene.kind == sim::SceneKind::quasi_static ? "static" : "dynamic";
@@ -75,6 +80,9 @@ void add_simulate_command(CLI::App& app)
       "simulate", "run a hyperelastic scene file (VTU per step, series.pvd, summary.json)");
   command->add_option("scene", options->scene, "scene file (.toml)")->required();
   command->add_option("--out", options->out, "output folder")->required();
+  command->add_option("--set", options->set, kSetHelp)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command->callback([options] { run_simulate(*options); });
 }
 

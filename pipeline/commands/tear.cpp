@@ -6,6 +6,7 @@
 #include "common/pvd_file.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "common/toml_overrides.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/render/membrane_frame.hpp"
 #include "pipeline/render/tear_frame_picture.hpp"
@@ -42,6 +43,7 @@ struct TearOptions {
   int max_frames = 1000;
   bool no_png = false;
   int png_size = 800;
+  std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the scene
 };
 
 double median(std::vector<double> values)
@@ -110,7 +112,7 @@ nlohmann::json results_of(const TearSimulation& simulation)
 
 void run_tear(const TearOptions& options)
 {
-  Scene scene = load_scene(options.scene);
+  Scene scene = load_scene(options.scene, options.set);
   if (options.max_steps > 0)
     scene.run.max_steps = options.max_steps;
   if (options.frame_every > 0)
@@ -118,6 +120,8 @@ void run_tear(const TearOptions& options)
 
   RunSummary summary("tear");
   summary.inputs()["scene"] = options.scene.string();
+  if (!options.set.empty())
+    summary.inputs()["set"] = options.set;
   nlohmann::json& parameters = summary.parameters();
   parameters["name"] = scene.name;
   parameters["max_steps"] = scene.run.max_steps;
@@ -189,6 +193,9 @@ void add_tear_command(CLI::App& app)
                    "scene file (.toml), e.g. data/scenes/square-sheet-45.toml")
       ->required();
   command->add_option("--out", options->out, "output folder")->required();
+  command->add_option("--set", options->set, kSetHelp)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command
       ->add_option("--max-steps", options->max_steps,
                    "stop after this many steps (default: the scene's)")

@@ -48,9 +48,10 @@ struct Scene {
   std::vector<SceneBone> bones;
 };
 
-/// Reads a scene file; relative paths in it are relative to the file's folder. Throws
-/// InputError naming the file, the table and the key of the first problem.
-Scene load_scene(const std::filesystem::path& file);
+/// Reads a scene file, with `overrides` ("table.key=value", the command line's --set) over it;
+/// relative paths in it are relative to the file's folder. Throws InputError naming the file (or
+/// the --set), the table and the key of the first problem.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 /// The same from TOML text; `base` resolves relative paths, `name` labels errors.
 Scene parse_scene(const std::string& text, const std::filesystem::path& base,

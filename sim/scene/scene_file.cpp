@@ -1,4 +1,5 @@
 #include "common/error.hpp"
+#include "common/toml_overrides.hpp"
 #include "common/toml_table.hpp"
 #include "sim/mesh/node_selection.hpp"
 #include "sim/mesh/structured_mesh.hpp"
@@ -331,11 +332,9 @@ void read_contact(TomlTable& table, const fs::path& base, Scene& scene)
   validate(scene.contact);
 }
 
-} // namespace
-
-Scene parse_scene(const std::string& text, const fs::path& base, const std::string& name)
+/// The scene of a parsed file (`document`).
+Scene read_document(const toml::table& document, const fs::path& base, const std::string& name)
 {
-  const toml::table document = parse_toml(text, name);
   TomlTable root(document, name);
   Scene scene;
   root.text("title", "");
@@ -387,9 +386,18 @@ Scene parse_scene(const std::string& text, const fs::path& base, const std::stri
   return scene;
 }
 
-Scene load_scene(const fs::path& file)
+} // namespace
+
+Scene parse_scene(const std::string& text, const fs::path& base, const std::string& name)
 {
-  Scene scene = parse_scene(read_text_file(file, "scene file"), file.parent_path(), file.string());
+  return read_document(parse_toml(text, name), base, name);
+}
+
+Scene load_scene(const fs::path& file, const std::vector<std::string>& overrides)
+{
+  toml::table document = parse_toml(read_text_file(file, "scene file"), file.string());
+  apply_overrides(document, overrides);
+  Scene scene = read_document(document, file.parent_path(), file.string());
   scene.file = file;
   return scene;
 }

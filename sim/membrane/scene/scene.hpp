@@ -100,8 +100,9 @@ struct Scene {
   RunSpec run;
 };
 
-/// Reads a scene file. Throws InputError naming the file (and line or key) if it is missing,
-/// malformed, has an unknown key, or a value is out of range.
-Scene load_scene(const std::filesystem::path& file);
+/// Reads a scene file, with `overrides` ("table.key=value", the command line's --set) over it.
+/// Throws InputError naming the file (and line or key, or the --set) if it is missing, malformed,
+/// has an unknown key, or a value is out of range.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 } // namespace ligsim::membrane

@@ -1,4 +1,5 @@
 #include "common/error.hpp"
+#include "common/toml_overrides.hpp"
 #include "common/toml_table.hpp"
 #include "sim/membrane/scene/scene.hpp"
 
@@ -100,11 +101,12 @@ bool Region::contains(const Vec2& p) const
   return (p - centre_mm).norm() >= radius_mm;
 }
 
-Scene load_scene(const std::filesystem::path& file)
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides)
 {
   if (!std::filesystem::is_regular_file(file))
     fail("scene file {} does not exist", file.string());
-  const toml::table document = parse_toml(read_text_file(file, "scene file"), file.string());
+  toml::table document = parse_toml(read_text_file(file, "scene file"), file.string());
+  apply_overrides(document, overrides);
   const std::string name = file.string();
   Scene scene;
   scene.source = file;

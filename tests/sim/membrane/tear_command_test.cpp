@@ -79,6 +79,28 @@ TEST(TearCommand, NoPngMeansNoPng)
   fs::remove(out.string() + ".log");
 }
 
+TEST(TearCommand, SetChangesASceneKeyAndNamesItsMistakes)
+{
+  const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_set";
+  fs::remove_all(out);
+  const LigsimRun run = run_ligsim("-q tear " + scene("square-sheet-90") + " --out " +
+                                       out.string() + " --set run.max_steps=5 --no-png",
+                                   out.string() + ".log");
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["parameters"]["max_steps"].get<int>(), 5);
+  EXPECT_EQ(summary["inputs"]["set"][0].get<std::string>(), "run.max_steps=5");
+  const LigsimRun misspelt = run_ligsim("tear " + scene("square-sheet-90") + " --out " +
+                                            out.string() + "_bad --set run.max_step=5",
+                                        out.string() + ".log");
+  EXPECT_EQ(misspelt.status, 1);
+  EXPECT_NE(misspelt.output.find("--set run.max_step=5"), std::string::npos) << misspelt.output;
+  EXPECT_FALSE(fs::exists(out.string() + "_bad"));
+  fs::remove_all(out);
+  fs::remove(out.string() + ".log");
+}
+
 TEST(TearCommand, BadSceneIsOneLineAndNoOutput)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_tear_command_test_bad";

@@ -59,6 +59,29 @@ TEST(SimulateCli, CubeTensionSceneWritesItsOutputs)
   EXPECT_TRUE(summary["stages"]["solve"].contains("peak_rss_mib"));
 }
 
+TEST(SimulateCli, SetChangesASceneKeyAndNamesItsMistakes)
+{
+  // Half the nodal force: half the reaction, with the scene file unchanged.
+  const fs::path out = fs::temp_directory_path() / "ligsim_cli_cube_set";
+  fs::remove_all(out);
+  const std::string scene = LIGSIM_SOURCE_DIR "/data/scenes/cube-tension.toml";
+  const CliRun run = run_ligsim("simulate " + scene +
+                                " --set 'force.per_node_n=[0, 0, 0.025]' --set "
+                                "solver.load_steps=2 --out " +
+                                out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.stderr_text;
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_EQ(summary["results"]["steps"].size(), 2u);
+  EXPECT_NEAR(summary["results"]["steps"].back()["reactions"]["bottom"]["force_n"][2].get<double>(),
+              -2.025, 1e-6);
+  const CliRun misspelt =
+      run_ligsim("simulate " + scene + " --set solver.load_step=2 --out " + out.string() + "_bad");
+  EXPECT_NE(misspelt.exit_code, 0);
+  EXPECT_NE(misspelt.stderr_text.find("--set solver.load_step=2: unknown key 'load_step'"),
+            std::string::npos)
+      << misspelt.stderr_text;
+}
+
 TEST(SimulateCli, DynamicSceneComesToRest)
 {
   const fs::path out = fs::temp_directory_path() / "ligsim_cli_dynamic";
