@@ -47,9 +47,10 @@ toml::table parse_assignment(const std::string& assignment)
   const std::string value = assignment.substr(equals + 1);
   if (auto table = parse_as_toml(key, value, name))
     return std::move(*table);
-  if (value.empty() || value.find_first_of("\n\"") != std::string::npos)
-    fail("{}: the value is not TOML (a number, true or false, \"text\" or [a list])", name);
-  return *parse_as_toml(key, quoted(value), name);
+  if (!value.empty() && value.find('"') == std::string::npos)
+    if (auto table = parse_as_toml(key, quoted(value), name))
+      return std::move(*table);
+  fail("{}: the value is not TOML (a number, true or false, \"text\" or [a list])", name);
 }
 
 /// The sub-table of `table` at `path` (which the assignment's parse made).

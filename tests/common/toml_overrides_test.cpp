@@ -98,4 +98,7 @@ TEST(TomlOverrides, RefusesWhatIsNotAnAssignment)
   EXPECT_THAT(error_of({"[tetmesh]order=2"}), HasSubstr("expected TABLE.KEY=VALUE"));
   EXPECT_THAT(error_of({"tetmesh.order="}), HasSubstr("the value is not TOML"));
   EXPECT_THAT(error_of({"tetmesh.order=\"2"}), HasSubstr("--set tetmesh.order=\"2"));
+  // Not TOML, and no TOML string either (a control character): refused, not read.
+  EXPECT_THAT(error_of({"tetmesh.span=a\x01b"}), HasSubstr("the value is not TOML"));
+  EXPECT_THAT(error_of({"tetmesh.span=two\nlines"}), HasSubstr("the value is not TOML"));
 }
