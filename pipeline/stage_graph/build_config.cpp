@@ -115,9 +115,11 @@ void read_material_section(const toml::table& table, const std::string& prefix,
 
 using namespace config_reading;
 
-BuildConfig load_build_config(const fs::path& file, const std::vector<std::string>& overrides)
+BuildConfig load_build_config(const fs::path& given, const std::vector<std::string>& overrides)
 {
-  const toml::table root = parse_config_file(file, overrides);
+  const toml::table root = parse_config_file(given, overrides);
+  // Without a file, messages name the settings; relative paths stay relative to here.
+  const fs::path file = given.empty() ? fs::path("--set") : given;
   if (root.contains("ligament"))
     fail("{}: this config describes a knee ([[ligament]] tables): `ligsim build` takes it; "
          "this command takes one ligament's config",

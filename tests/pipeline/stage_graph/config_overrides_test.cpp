@@ -89,4 +89,7 @@ TEST(ConfigOverrides, MistakesNameTheAssignment)
               HasSubstr("--set tetmesh.cell_size_mm=fine"));
   EXPECT_THAT(build_error(file, {"tetmsh.order=2"}), HasSubstr("tetmsh"));
   EXPECT_THAT(build_error(file, {"tetmesh.order"}), HasSubstr("expected TABLE.KEY=VALUE"));
+  // Without a file, the messages about a table as a whole name the settings too.
+  EXPECT_THAT(build_error({}, {"anatomy.side=up"}),
+              HasSubstr("--set: [anatomy] side must be \"left\" or \"right\""));
 }
