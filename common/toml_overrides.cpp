@@ -2,6 +2,8 @@
 
 #include "common/error.hpp"
 
+#include <fmt/format.h>
+
 #include <optional>
 
 namespace ligsim {
@@ -30,6 +32,30 @@ std::string quoted(const std::string& word)
     text += c;
   }
   return text + "\"";
+}
+
+/// A double as a TOML float: the shortest text that reads back as the same double, with a
+/// fraction where it would otherwise read as an integer.
+std::string toml_float(double value)
+{
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".eEni") == std::string::npos)
+    text += ".0";
+  return text;
+}
+
+template <class T, class Format>
+std::string toml_array(const std::vector<T>& values, Format&& format)
+{
+  std::string text = "[";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    text += (i > 0 ? ", " : "") + format(values[i]);
+  return text + "]";
+}
+
+std::string toml_integer(int value)
+{
+  return std::to_string(value);
 }
 
 /// The assignment as a table of one dotted key: TOML first, a quoted word second.
@@ -89,6 +115,41 @@ void merge(toml::table& into, toml::table& from, const std::string& assignment,
 }
 
 } // namespace
+
+std::string toml_assignment(const std::string& key, double value)
+{
+  return key + "=" + toml_float(value);
+}
+
+std::string toml_assignment(const std::string& key, int value)
+{
+  return key + "=" + toml_integer(value);
+}
+
+std::string toml_assignment(const std::string& key, bool value)
+{
+  return key + "=" + (value ? "true" : "false");
+}
+
+std::string toml_assignment(const std::string& key, const std::string& text)
+{
+  return key + "=" + quoted(text);
+}
+
+std::string toml_assignment(const std::string& key, const std::vector<double>& values)
+{
+  return key + "=" + toml_array(values, toml_float);
+}
+
+std::string toml_assignment(const std::string& key, const std::vector<int>& values)
+{
+  return key + "=" + toml_array(values, toml_integer);
+}
+
+std::string toml_assignment(const std::string& key, const std::vector<std::string>& values)
+{
+  return key + "=" + toml_array(values, quoted);
+}
 
 void apply_overrides(toml::table& root, const std::vector<std::string>& assignments)
 {

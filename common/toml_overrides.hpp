@@ -16,6 +16,17 @@ namespace ligsim {
 /// assignment when it is not of that form.
 void apply_overrides(toml::table& root, const std::vector<std::string>& assignments);
 
+/// "key=VALUE" with VALUE written as TOML, exactly (a double round-trips): what a convenience
+/// flag sets, as `--set` would (--cell-size 1.2 is tetmesh.cell_size_mm=1.2), so that it meets
+/// the config reader's checks.
+std::string toml_assignment(const std::string& key, double value);
+std::string toml_assignment(const std::string& key, int value);
+std::string toml_assignment(const std::string& key, bool value);
+std::string toml_assignment(const std::string& key, const std::string& text);
+std::string toml_assignment(const std::string& key, const std::vector<double>& values);
+std::string toml_assignment(const std::string& key, const std::vector<int>& values);
+std::string toml_assignment(const std::string& key, const std::vector<std::string>& values);
+
 /// What a `--set` on the command line is for, for the commands' help.
 inline constexpr const char* kSetHelp =
     "set a config key over the file, TABLE.KEY=VALUE (repeatable; any key of the config, e.g. "

@@ -23,8 +23,8 @@
 #include <CLI/CLI.hpp>
 #include <vtkPolyData.h>
 
-#include <cmath>
 #include <memory>
+#include <optional>
 #include <tuple>
 
 namespace ligsim::cli {
@@ -34,8 +34,6 @@ using pipeline::BuildConfig;
 
 namespace {
 
-constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
-
 /// Command-line flags of `build` and of every stage subcommand; each overrides the config file.
 struct BuildOptions {
   std::string config, surface, femur, tibia, out;
@@ -43,10 +41,9 @@ struct BuildOptions {
   std::string labels, colour_table, ligament_label, femur_label, tibia_label;
   std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
   std::vector<int> femur_indices, tibia_indices;
-  double attach_distance = kUnset, end_length = kUnset, voxel = kUnset, alpha = kUnset;
-  double cell_size = kUnset, facet_size = kUnset, facet_distance = kUnset, radius_edge = kUnset;
-  double in_situ = kUnset;
-  int order = 0; ///< 0: the config's
+  std::optional<double> attach_distance, end_length, voxel, alpha;
+  std::optional<double> cell_size, facet_size, facet_distance, radius_edge, in_situ;
+  std::optional<int> order;
   std::string field_method, span;
   bool force = false, strict = false, no_images = false;
 };
@@ -87,58 +84,93 @@ void add_options(CLI::App* command, BuildOptions& o)
   auto* attach = "Attachment areas";
   command
       ->add_option("--femur-rule", o.femur_rule,
-                   "auto, indices, array, proximity, patch, landmark or end")
+                   "auto, indices, array, proximity, patch, landmark or end "
+                   "(--set attachments.femur.rule)")
       ->group(attach);
   command
       ->add_option("--tibia-rule", o.tibia_rule,
-                   "auto, indices, array, proximity, patch, landmark or end")
+                   "auto, indices, array, proximity, patch, landmark or end "
+                   "(--set attachments.tibia.rule)")
       ->group(attach);
-  command->add_option("--femur-indices", o.femur_indices, "ligament vertex indices of A1")
+  command
+      ->add_option("--femur-indices", o.femur_indices,
+                   "ligament vertex indices of A1 (--set attachments.femur.indices)")
       ->delimiter(',')
       ->group(attach);
-  command->add_option("--tibia-indices", o.tibia_indices, "ligament vertex indices of A2")
+  command
+      ->add_option("--tibia-indices", o.tibia_indices,
+                   "ligament vertex indices of A2 (--set attachments.tibia.indices)")
       ->delimiter(',')
       ->group(attach);
-  command->add_option("--femur-array", o.femur_array, "point-data array marking A1 (non-zero)")
+  command
+      ->add_option("--femur-array", o.femur_array,
+                   "point-data array marking A1, non-zero (--set attachments.femur.array)")
       ->group(attach);
-  command->add_option("--tibia-array", o.tibia_array, "point-data array marking A2 (non-zero)")
+  command
+      ->add_option("--tibia-array", o.tibia_array,
+                   "point-data array marking A2, non-zero (--set attachments.tibia.array)")
       ->group(attach);
   command
       ->add_option("--attach-distance", o.attach_distance,
-                   "proximity rule: max distance to the bone, mm (default 1)")
+                   "proximity rule: max distance to the bone, mm, both areas (default 1; --set "
+                   "attachments.femur.distance_mm and attachments.tibia.distance_mm)")
       ->group(attach);
   command
       ->add_option("--end-length", o.end_length,
-                   "end rule: length of the end along the main axis, mm (default 5)")
+                   "end rule: length of the end along the main axis, mm, both areas (default 5; "
+                   "--set attachments.femur.end_length_mm and attachments.tibia.end_length_mm)")
       ->group(attach);
-  command->add_option("--femur-end", o.femur_end, "end rule: proximal, distal, min, max or auto")
+  command
+      ->add_option("--femur-end", o.femur_end,
+                   "end rule: proximal, distal, min, max or auto (--set attachments.femur.end)")
       ->group(attach);
-  command->add_option("--tibia-end", o.tibia_end, "end rule: proximal, distal, min, max or auto")
+  command
+      ->add_option("--tibia-end", o.tibia_end,
+                   "end rule: proximal, distal, min, max or auto (--set attachments.tibia.end)")
       ->group(attach);
   auto* stages = "Stage parameters";
-  command->add_option("--voxel", o.voxel, "voxel spacing, mm (default: thickness / 8)")
+  command
+      ->add_option("--voxel", o.voxel,
+                   "voxel spacing, mm (default: thickness / 8; --set voxelize.spacing_mm)")
       ->group(stages);
-  command->add_option("--alpha", o.alpha, "centerline medial weight in [0, 1] (default 0.1)")
+  command
+      ->add_option("--alpha", o.alpha,
+                   "centerline medial weight in [0, 1] (default 0.1; --set centerline.alpha)")
       ->group(stages);
   command
       ->add_option("--span", o.span,
-                   "centerline between the areas' means (default) or through the whole attachments")
+                   "centerline between the areas' means (default) or through the whole attachments"
+                   " (--set centerline.span)")
       ->check(CLI::IsMember({"means", "attachments"}))
       ->group(stages);
-  command->add_option("--field-method", o.field_method, "geometric (default) or laplace")
-      ->group(stages);
-  command->add_option("--cell-size", o.cell_size, "tet mesh max circumradius, mm")->group(stages);
-  command->add_option("--facet-size", o.facet_size, "tet mesh max surface Delaunay ball radius, mm")
+  command
+      ->add_option("--field-method", o.field_method,
+                   "geometric (default) or laplace (--set field.method)")
       ->group(stages);
   command
-      ->add_option("--facet-distance", o.facet_distance, "tet mesh max distance to the surface, mm")
+      ->add_option("--cell-size", o.cell_size,
+                   "tet mesh max circumradius, mm (--set tetmesh.cell_size_mm)")
       ->group(stages);
-  command->add_option("--order", o.order, "tet order: 1 linear, 2 10-node (default: the config's)")
+  command
+      ->add_option("--facet-size", o.facet_size,
+                   "tet mesh max surface Delaunay ball radius, mm (--set tetmesh.facet_size_mm)")
+      ->group(stages);
+  command
+      ->add_option("--facet-distance", o.facet_distance,
+                   "tet mesh max distance to the surface, mm (--set tetmesh.facet_distance_mm)")
+      ->group(stages);
+  command
+      ->add_option("--order", o.order,
+                   "tet order: 1 linear, 2 10-node (default: the config's; --set tetmesh.order)")
       ->check(CLI::IsMember({1, 2}))
       ->group(stages);
-  command->add_option("--radius-edge", o.radius_edge, "tet mesh radius-edge bound (default 2)")
+  command
+      ->add_option("--radius-edge", o.radius_edge,
+                   "tet mesh radius-edge bound (default 2; --set tetmesh.radius_edge_ratio)")
       ->group(stages);
-  command->add_option("--in-situ-strain", o.in_situ, "fiber pre-strain (default 0.029)")
+  command
+      ->add_option("--in-situ-strain", o.in_situ,
+                   "fiber pre-strain (default 0.029; --set model.in_situ_strain)")
       ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
   command->add_flag("--no-images", o.no_images,
@@ -147,64 +179,62 @@ void add_options(CLI::App* command, BuildOptions& o)
                     "refuse a defective ligament surface instead of repairing it");
 }
 
-void set_if(double value, double& target)
-{
-  if (!std::isnan(value))
-    target = value;
-}
 void set_if(const std::string& value, std::string& target)
 {
   if (!value.empty())
     target = value;
 }
 
-/// Returns whether a flag set anything of the rule.
-bool apply_rule_flags(attachments::Rule& rule, const std::string& kind,
-                      const std::vector<int>& indices, const std::string& array,
-                      const std::string& end, const BuildOptions& o)
+/// The stage and attachment flags as the config keys they set (--cell-size 1.2 is
+/// tetmesh.cell_size_mm=1.2), under `prefix` ("ligament." over every ligament of a knee), after
+/// the --set ones: the flags win, and the config's reader checks them as it checks the file.
+std::vector<std::string> with_flag_assignments(const BuildOptions& o, const std::string& prefix)
 {
-  const bool any = !kind.empty() || !indices.empty() || !array.empty() || !end.empty() ||
-                   !std::isnan(o.attach_distance) || !std::isnan(o.end_length);
-  set_if(kind, rule.rule);
-  if (!indices.empty())
-    rule.indices = indices;
-  set_if(array, rule.array);
-  set_if(end, rule.end);
-  set_if(o.attach_distance, rule.distance_mm);
-  set_if(o.end_length, rule.end_length_mm);
-  return any;
-}
-
-/// The stage flags over one ligament's config.
-void apply_stage_flags(const BuildOptions& o, BuildConfig& config)
-{
-  config.strict = config.strict || o.strict;
-  if (apply_rule_flags(config.femur_attachment, o.femur_rule, o.femur_indices, o.femur_array,
-                       o.femur_end, o))
-    config.given.insert("attachments.femur");
-  if (apply_rule_flags(config.tibia_attachment, o.tibia_rule, o.tibia_indices, o.tibia_array,
-                       o.tibia_end, o))
-    config.given.insert("attachments.tibia");
-  set_if(o.voxel, config.voxelize.spacing_mm);
-  set_if(o.alpha, config.centerline.alpha);
+  std::vector<std::string> set = o.set;
+  const auto add = [&](const std::string& key, const auto& value) {
+    set.push_back(toml_assignment(prefix + key, value));
+  };
+  const auto add_if = [&](const std::string& key, const auto& value) {
+    if (value)
+      add(key, *value);
+  };
+  if (o.strict)
+    add("input.strict", true);
+  for (const auto& [bone, rule, indices, array, end] :
+       {std::tuple{"femur", &o.femur_rule, &o.femur_indices, &o.femur_array, &o.femur_end},
+        std::tuple{"tibia", &o.tibia_rule, &o.tibia_indices, &o.tibia_array, &o.tibia_end}}) {
+    const std::string table = fmt::format("attachments.{}.", bone);
+    if (!rule->empty())
+      add(table + "rule", *rule);
+    if (!indices->empty())
+      add(table + "indices", *indices);
+    if (!array->empty())
+      add(table + "array", *array);
+    if (!end->empty())
+      add(table + "end", *end);
+    add_if(table + "distance_mm", o.attach_distance);
+    add_if(table + "end_length_mm", o.end_length);
+  }
+  add_if("voxelize.spacing_mm", o.voxel);
+  add_if("centerline.alpha", o.alpha);
   if (!o.span.empty())
-    config.centerline.span = centerline::parse_span(o.span);
+    add("centerline.span", o.span);
   if (!o.field_method.empty())
-    config.field.method = field::parse_method(o.field_method);
-  set_if(o.cell_size, config.tetmesh.cell_size_mm);
-  set_if(o.facet_size, config.tetmesh.facet_size_mm);
-  set_if(o.facet_distance, config.tetmesh.facet_distance_mm);
-  set_if(o.radius_edge, config.tetmesh.radius_edge_ratio);
-  if (o.order != 0)
-    config.tetmesh.order = o.order;
-  set_if(o.in_situ, config.model.in_situ_strain);
+    add("field.method", o.field_method);
+  add_if("tetmesh.cell_size_mm", o.cell_size);
+  add_if("tetmesh.facet_size_mm", o.facet_size);
+  add_if("tetmesh.facet_distance_mm", o.facet_distance);
+  add_if("tetmesh.radius_edge_ratio", o.radius_edge);
+  add_if("tetmesh.order", o.order);
+  add_if("model.in_situ_strain", o.in_situ);
+  return set;
 }
 
 BuildConfig resolve_config(const BuildOptions& o)
 {
-  BuildConfig config = o.config.empty() && o.set.empty()
-                           ? BuildConfig{}
-                           : pipeline::load_build_config(o.config, o.set);
+  const std::vector<std::string> set = with_flag_assignments(o, "ligament.");
+  BuildConfig config =
+      o.config.empty() && set.empty() ? BuildConfig{} : pipeline::load_build_config(o.config, set);
   if (!o.surface.empty())
     config.surface = o.surface;
   if (!o.femur.empty())
@@ -218,7 +248,6 @@ BuildConfig resolve_config(const BuildOptions& o)
   set_if(o.ligament_label, config.ligament_label);
   set_if(o.femur_label, config.femur_label);
   set_if(o.tibia_label, config.tibia_label);
-  apply_stage_flags(o, config);
   return config;
 }
 
@@ -272,11 +301,21 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
         std::pair{"--ligament-label", o.ligament_label}})
     if (!value.empty())
       fail("{} describes a knee: its surfaces come from the config, not from {}", o.config, flag);
+  const bool attachment_flag =
+      !o.femur_rule.empty() || !o.tibia_rule.empty() || !o.femur_indices.empty() ||
+      !o.tibia_indices.empty() || !o.femur_array.empty() || !o.tibia_array.empty() ||
+      !o.femur_end.empty() || !o.tibia_end.empty() || o.attach_distance || o.end_length;
+  if (attachment_flag)
+    fail("{} describes a knee: each ligament has its own footprints ([ligament.attachments.femur] "
+         "and the distal one), which one flag cannot give; set them in the config, or for every "
+         "ligament with --set ligament.attachments.femur.KEY=VALUE",
+         o.config);
   const fs::path out = o.out;
   // Surfaces from a label map are written only once all of them could be made.
   nlohmann::json label_report;
   pipeline::KneeConfig knee = pipeline::knee_surfaces_from_labels(
-      pipeline::load_knee_config(o.config, o.set), out, label_report);
+      pipeline::load_knee_config(o.config, with_flag_assignments(o, "ligament.")), out,
+      label_report);
   pipeline::add_anatomy_parts(knee);
   // Every input is read before a stage runs, so that bad input leaves nothing behind.
   nlohmann::json bone_repair = nlohmann::json::object();
@@ -294,7 +333,6 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
   }
   nlohmann::json repairs = nlohmann::json::object();
   for (pipeline::LigamentConfig& ligament : knee.ligaments) {
-    apply_stage_flags(o, ligament.build);
     repair::Report report;
     const TriangleSurface surface = pipeline::load_ligament(ligament.build, nullptr, &report);
     for (const std::string& line : repair::describe(report))

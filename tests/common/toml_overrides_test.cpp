@@ -102,3 +102,32 @@ TEST(TomlOverrides, RefusesWhatIsNotAnAssignment)
   EXPECT_THAT(error_of({"tetmesh.span=a\x01b"}), HasSubstr("the value is not TOML"));
   EXPECT_THAT(error_of({"tetmesh.span=two\nlines"}), HasSubstr("the value is not TOML"));
 }
+
+TEST(TomlOverrides, AFlagsAssignmentReadsBackAsTheSameValue)
+{
+  // What a convenience flag sets must reach the reader unchanged: doubles to the last bit, a
+  // whole number still a float, text with quotes and backslashes, lists.
+  const double third = 1.0 / 3.0;
+  toml::table root;
+  apply_overrides(root, {toml_assignment("a.third", third), toml_assignment("a.whole", 2.0),
+                         toml_assignment("a.tiny", 1e-300), toml_assignment("a.order", 2),
+                         toml_assignment("a.on", false),
+                         toml_assignment("a.text", std::string("say \"hi\" \\ there")),
+                         toml_assignment("a.axis", std::vector<double>{0.1, -2.0, 3e7}),
+                         toml_assignment("a.ids", std::vector<int>{4, 5}),
+                         toml_assignment("a.names", std::vector<std::string>{"ACL", "MCL"})});
+  EXPECT_EQ(root.at_path("a.third").value<double>(), third);
+  ASSERT_TRUE(root.at_path("a.whole").is_floating_point());
+  EXPECT_EQ(root.at_path("a.whole").value<double>(), 2.0);
+  EXPECT_EQ(root.at_path("a.tiny").value<double>(), 1e-300);
+  EXPECT_EQ(root.at_path("a.order").value<int64_t>(), 2);
+  EXPECT_EQ(root.at_path("a.on").value<bool>(), false);
+  EXPECT_EQ(root.at_path("a.text").value<std::string>(), "say \"hi\" \\ there");
+  const toml::array& axis = *root.at_path("a.axis").as_array();
+  ASSERT_EQ(axis.size(), 3u);
+  EXPECT_EQ(axis[0].value<double>(), 0.1);
+  EXPECT_EQ(axis[1].value<double>(), -2.0);
+  EXPECT_EQ(axis[2].value<double>(), 3e7);
+  EXPECT_EQ(root.at_path("a.ids").as_array()->size(), 2u);
+  EXPECT_EQ((*root.at_path("a.names").as_array())[1].value<std::string>(), "MCL");
+}

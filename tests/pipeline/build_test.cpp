@@ -153,6 +153,11 @@ TEST(Build, SyntheticBandWithCacheReuse)
             std::string::npos)
       << misspelt.stderr_text;
   EXPECT_EQ(read_summary(out)["inputs"]["set"][0], "centerline.alpha=0.5");
+  // A flag is its key set after the --set ones: it wins (the centerline would rerun at 0.3).
+  ASSERT_EQ(run_ligsim("build " + inputs + " --set centerline.alpha=0.3 --alpha 0.5").exit_code, 0);
+  for (const auto& [name, status] : statuses(read_summary(out)))
+    EXPECT_EQ(status, "reused") << name;
+  EXPECT_EQ(read_summary(out)["parameters"]["centerline"]["alpha"], 0.5);
 }
 
 /// The bound footprint areas (the model stage's `footprint_area_mm2`) of the band built with

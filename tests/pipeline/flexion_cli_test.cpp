@@ -150,6 +150,10 @@ TEST(FlexionCli, BadInputsAreRejectedBeforeAnythingIsWritten)
   expect_rejected(model + " --axis 1,2,3,1,2,3", "zero length");
   expect_rejected(model + " " + flexion_axis_argument(band_model()) + " --angles 0,45,30",
                   "increase");
+  // A flag is its key set after the --set ones: it wins over them, and meets the same checks.
+  expect_rejected(model + " " + flexion_axis_argument(band_model()) +
+                      " --set 'angles_deg=[0, 30]' --angles 0,45,30",
+                  "increase");
   expect_rejected(model, "posterior direction"); // no axis and nothing to fit it with
   expect_rejected(model + " " + flexion_axis_argument(band_model()) +
                       " --set static.max_iteration=5",

@@ -160,6 +160,17 @@ TEST(KneeCli, BuildsEveryLigamentInItsFolderAndRebuildsOnlyTheOneChanged)
                        stage == "B/companion/tetmesh";
     EXPECT_EQ(status, rerun ? "ran" : "reused") << stage;
   }
+
+  // A stage flag sets its key in every ligament, over the shared table and over a ligament's own
+  // (B's 1.3): every tet mesh reruns at the flag's size.
+  const CliResult flagged = run_ligsim(build + out.string() + " --cell-size 1.1");
+  ASSERT_EQ(flagged.exit_code, 0) << flagged.stderr_text;
+  const std::map<std::string, std::string> after_flag = statuses(out);
+  const nlohmann::json parameters = read_json(out / "summary.json")["parameters"]["ligaments"];
+  for (const char* name : {"A", "B", "C"}) {
+    EXPECT_EQ(after_flag.at(std::string(name) + "/tetmesh"), "ran") << name;
+    EXPECT_EQ(parameters[name]["tetmesh"]["cell_size_mm"], 1.1) << name;
+  }
 }
 
 TEST(KneeCli, EachLigamentAloneGivesItsAnswerInTheKnee)
@@ -293,6 +304,15 @@ TEST(KneeCli, BadKneeConfigsAreRejectedWithWhereAndWhat)
                   "gives both tibia and fibula");
   expect_rejected(bones + "[material]\nmu_mpa = 1\n" + a, "per ligament");
   expect_rejected("[input]\nfemur = \"femur.vtp\"\n" + a, "needs the femur and the tibia");
+
+  // An attachment flag would give every ligament the same footprint rule: refused.
+  const fs::path out = fresh_folder("knee_flag_out");
+  const CliResult flagged = run_ligsim("build --config " + (knee_inputs() / "knee.toml").string() +
+                                       " --femur-rule end --out " + out.string());
+  EXPECT_NE(flagged.exit_code, 0);
+  EXPECT_NE(flagged.stderr_text.find("each ligament has its own footprints"), std::string::npos)
+      << flagged.stderr_text;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(KneeCli, TheFreeKneesPathReplayedAsATableGivesItsForcesAndACutLigamentChangesIt)
