@@ -232,7 +232,7 @@ std::vector<std::string> with_flag_assignments(const BuildOptions& o, const std:
 
 BuildConfig resolve_config(const BuildOptions& o)
 {
-  const std::vector<std::string> set = with_flag_assignments(o, "ligament.");
+  const std::vector<std::string> set = with_flag_assignments(o, "");
   BuildConfig config =
       o.config.empty() && set.empty() ? BuildConfig{} : pipeline::load_build_config(o.config, set);
   if (!o.surface.empty())
