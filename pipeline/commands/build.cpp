@@ -9,6 +9,7 @@
 #include "common/toml_overrides.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/commands/anatomy_outputs.hpp"
+#include "pipeline/commands/key_flags.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "pipeline/stage_graph/companion_build.hpp"
@@ -24,7 +25,6 @@
 #include <vtkPolyData.h>
 
 #include <memory>
-#include <optional>
 #include <tuple>
 
 namespace ligsim::cli {
@@ -39,13 +39,8 @@ struct BuildOptions {
   std::string config, surface, femur, tibia, out;
   std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the config
   std::string labels, colour_table, ligament_label, femur_label, tibia_label;
-  std::string femur_rule, tibia_rule, femur_array, tibia_array, femur_end, tibia_end;
-  std::vector<int> femur_indices, tibia_indices;
-  std::optional<double> attach_distance, end_length, voxel, alpha;
-  std::optional<double> cell_size, facet_size, facet_distance, radius_edge, in_situ;
-  std::optional<int> order;
-  std::string field_method, span;
-  bool force = false, strict = false, no_images = false;
+  KeyFlags key_flags; ///< the stage and attachment flags: short names for config keys
+  bool force = false, no_images = false;
 };
 
 void add_options(CLI::App* command, BuildOptions& o)
@@ -82,101 +77,75 @@ void add_options(CLI::App* command, BuildOptions& o)
                    "label map, same stem)")
       ->group(label_map);
   auto* attach = "Attachment areas";
-  command
-      ->add_option("--femur-rule", o.femur_rule,
-                   "auto, indices, array, proximity, patch, landmark or end "
-                   "(--set attachments.femur.rule)")
+  auto& keys = o.key_flags;
+  for (const char* bone : {"femur", "tibia"}) {
+    const std::string table = fmt::format("attachments.{}.", bone);
+    const char* area = bone == std::string("femur") ? "A1" : "A2";
+    keys.add<std::string>(*command, fmt::format("--{}-rule", bone),
+                          "auto, indices, array, proximity, patch, landmark or end",
+                          {table + "rule"})
+        ->group(attach);
+    keys.add<std::vector<int>>(*command, fmt::format("--{}-indices", bone),
+                               fmt::format("ligament vertex indices of {}", area),
+                               {table + "indices"})
+        ->delimiter(',')
+        ->group(attach);
+    keys.add<std::string>(*command, fmt::format("--{}-array", bone),
+                          fmt::format("point-data array marking {}, non-zero", area),
+                          {table + "array"})
+        ->group(attach);
+    keys.add<std::string>(*command, fmt::format("--{}-end", bone),
+                          "end rule: proximal, distal, min, max or auto", {table + "end"})
+        ->group(attach);
+  }
+  keys.add<double>(*command, "--attach-distance",
+                   "proximity rule: max distance to the bone, mm, both areas (default 1)",
+                   {"attachments.femur.distance_mm", "attachments.tibia.distance_mm"})
       ->group(attach);
-  command
-      ->add_option("--tibia-rule", o.tibia_rule,
-                   "auto, indices, array, proximity, patch, landmark or end "
-                   "(--set attachments.tibia.rule)")
-      ->group(attach);
-  command
-      ->add_option("--femur-indices", o.femur_indices,
-                   "ligament vertex indices of A1 (--set attachments.femur.indices)")
-      ->delimiter(',')
-      ->group(attach);
-  command
-      ->add_option("--tibia-indices", o.tibia_indices,
-                   "ligament vertex indices of A2 (--set attachments.tibia.indices)")
-      ->delimiter(',')
-      ->group(attach);
-  command
-      ->add_option("--femur-array", o.femur_array,
-                   "point-data array marking A1, non-zero (--set attachments.femur.array)")
-      ->group(attach);
-  command
-      ->add_option("--tibia-array", o.tibia_array,
-                   "point-data array marking A2, non-zero (--set attachments.tibia.array)")
-      ->group(attach);
-  command
-      ->add_option("--attach-distance", o.attach_distance,
-                   "proximity rule: max distance to the bone, mm, both areas (default 1; --set "
-                   "attachments.femur.distance_mm and attachments.tibia.distance_mm)")
-      ->group(attach);
-  command
-      ->add_option("--end-length", o.end_length,
-                   "end rule: length of the end along the main axis, mm, both areas (default 5; "
-                   "--set attachments.femur.end_length_mm and attachments.tibia.end_length_mm)")
-      ->group(attach);
-  command
-      ->add_option("--femur-end", o.femur_end,
-                   "end rule: proximal, distal, min, max or auto (--set attachments.femur.end)")
-      ->group(attach);
-  command
-      ->add_option("--tibia-end", o.tibia_end,
-                   "end rule: proximal, distal, min, max or auto (--set attachments.tibia.end)")
+  keys.add<double>(*command, "--end-length",
+                   "end rule: length of the end along the main axis, mm, both areas (default 5)",
+                   {"attachments.femur.end_length_mm", "attachments.tibia.end_length_mm"})
       ->group(attach);
   auto* stages = "Stage parameters";
-  command
-      ->add_option("--voxel", o.voxel,
-                   "voxel spacing, mm (default: thickness / 8; --set voxelize.spacing_mm)")
+  keys.add<double>(*command, "--voxel", "voxel spacing, mm (default: thickness / 8)",
+                   {"voxelize.spacing_mm"})
       ->group(stages);
-  command
-      ->add_option("--alpha", o.alpha,
-                   "centerline medial weight in [0, 1] (default 0.1; --set centerline.alpha)")
+  keys.add<double>(*command, "--alpha", "centerline medial weight in [0, 1] (default 0.1)",
+                   {"centerline.alpha"})
       ->group(stages);
-  command
-      ->add_option("--span", o.span,
-                   "centerline between the areas' means (default) or through the whole attachments"
-                   " (--set centerline.span)")
+  keys.add<std::string>(
+          *command, "--span",
+          "centerline between the areas' means (default) or through the whole attachments",
+          {"centerline.span"})
       ->check(CLI::IsMember({"means", "attachments"}))
       ->group(stages);
-  command
-      ->add_option("--field-method", o.field_method,
-                   "geometric (default) or laplace (--set field.method)")
+  keys.add<std::string>(*command, "--field-method", "geometric (default) or laplace",
+                        {"field.method"})
       ->group(stages);
-  command
-      ->add_option("--cell-size", o.cell_size,
-                   "tet mesh max circumradius, mm (--set tetmesh.cell_size_mm)")
+  keys.add<double>(*command, "--cell-size", "tet mesh max circumradius, mm",
+                   {"tetmesh.cell_size_mm"})
       ->group(stages);
-  command
-      ->add_option("--facet-size", o.facet_size,
-                   "tet mesh max surface Delaunay ball radius, mm (--set tetmesh.facet_size_mm)")
+  keys.add<double>(*command, "--facet-size", "tet mesh max surface Delaunay ball radius, mm",
+                   {"tetmesh.facet_size_mm"})
       ->group(stages);
-  command
-      ->add_option("--facet-distance", o.facet_distance,
-                   "tet mesh max distance to the surface, mm (--set tetmesh.facet_distance_mm)")
+  keys.add<double>(*command, "--facet-distance", "tet mesh max distance to the surface, mm",
+                   {"tetmesh.facet_distance_mm"})
       ->group(stages);
-  command
-      ->add_option("--order", o.order,
-                   "tet order: 1 linear, 2 10-node (default: the config's; --set tetmesh.order)")
+  keys.add<int>(*command, "--order", "tet order: 1 linear, 2 10-node (default: the config's)",
+                {"tetmesh.order"})
       ->check(CLI::IsMember({1, 2}))
       ->group(stages);
-  command
-      ->add_option("--radius-edge", o.radius_edge,
-                   "tet mesh radius-edge bound (default 2; --set tetmesh.radius_edge_ratio)")
+  keys.add<double>(*command, "--radius-edge", "tet mesh radius-edge bound (default 2)",
+                   {"tetmesh.radius_edge_ratio"})
       ->group(stages);
-  command
-      ->add_option("--in-situ-strain", o.in_situ,
-                   "fiber pre-strain (default 0.029; --set model.in_situ_strain)")
+  keys.add<double>(*command, "--in-situ-strain", "fiber pre-strain (default 0.029)",
+                   {"model.in_situ_strain"})
       ->group(stages);
   command->add_flag("--force", o.force, "rerun every stage, ignoring the cache");
   command->add_flag("--no-images", o.no_images,
                     "no anatomy.png (the landmarks on the bones; no X server needed)");
-  command->add_flag("--strict", o.strict,
-                    "refuse a defective ligament surface instead of repairing it");
+  keys.add_switch(*command, "--strict",
+                  "refuse a defective ligament surface instead of repairing it", "input.strict");
 }
 
 void set_if(const std::string& value, std::string& target)
@@ -185,48 +154,14 @@ void set_if(const std::string& value, std::string& target)
     target = value;
 }
 
-/// The stage and attachment flags as the config keys they set (--cell-size 1.2 is
-/// tetmesh.cell_size_mm=1.2), under `prefix` ("ligament." over every ligament of a knee), after
-/// the --set ones: the flags win, and the config's reader checks them as it checks the file.
+/// The --set assignments, then the stage and attachment flags as the config keys they set, under
+/// `prefix` ("ligament." over every ligament of a knee): the flags win, and the config's reader
+/// checks them as it checks the file.
 std::vector<std::string> with_flag_assignments(const BuildOptions& o, const std::string& prefix)
 {
   std::vector<std::string> set = o.set;
-  const auto add = [&](const std::string& key, const auto& value) {
-    set.push_back(toml_assignment(prefix + key, value));
-  };
-  const auto add_if = [&](const std::string& key, const auto& value) {
-    if (value)
-      add(key, *value);
-  };
-  if (o.strict)
-    add("input.strict", true);
-  for (const auto& [bone, rule, indices, array, end] :
-       {std::tuple{"femur", &o.femur_rule, &o.femur_indices, &o.femur_array, &o.femur_end},
-        std::tuple{"tibia", &o.tibia_rule, &o.tibia_indices, &o.tibia_array, &o.tibia_end}}) {
-    const std::string table = fmt::format("attachments.{}.", bone);
-    if (!rule->empty())
-      add(table + "rule", *rule);
-    if (!indices->empty())
-      add(table + "indices", *indices);
-    if (!array->empty())
-      add(table + "array", *array);
-    if (!end->empty())
-      add(table + "end", *end);
-    add_if(table + "distance_mm", o.attach_distance);
-    add_if(table + "end_length_mm", o.end_length);
-  }
-  add_if("voxelize.spacing_mm", o.voxel);
-  add_if("centerline.alpha", o.alpha);
-  if (!o.span.empty())
-    add("centerline.span", o.span);
-  if (!o.field_method.empty())
-    add("field.method", o.field_method);
-  add_if("tetmesh.cell_size_mm", o.cell_size);
-  add_if("tetmesh.facet_size_mm", o.facet_size);
-  add_if("tetmesh.facet_distance_mm", o.facet_distance);
-  add_if("tetmesh.radius_edge_ratio", o.radius_edge);
-  add_if("tetmesh.order", o.order);
-  add_if("model.in_situ_strain", o.in_situ);
+  for (std::string& assignment : o.key_flags.assignments(prefix))
+    set.push_back(std::move(assignment));
   return set;
 }
 
@@ -301,15 +236,12 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
         std::pair{"--ligament-label", o.ligament_label}})
     if (!value.empty())
       fail("{} describes a knee: its surfaces come from the config, not from {}", o.config, flag);
-  const bool attachment_flag =
-      !o.femur_rule.empty() || !o.tibia_rule.empty() || !o.femur_indices.empty() ||
-      !o.tibia_indices.empty() || !o.femur_array.empty() || !o.tibia_array.empty() ||
-      !o.femur_end.empty() || !o.tibia_end.empty() || o.attach_distance || o.end_length;
-  if (attachment_flag)
+  if (const std::vector<std::string> flags = o.key_flags.given_under("attachments.");
+      !flags.empty())
     fail("{} describes a knee: each ligament has its own footprints ([ligament.attachments.femur] "
-         "and the distal one), which one flag cannot give; set them in the config, or for every "
-         "ligament with --set ligament.attachments.femur.KEY=VALUE",
-         o.config);
+         "and the distal one), which one flag cannot give ({}); set them in the config, or for "
+         "every ligament with --set ligament.attachments.femur.KEY=VALUE",
+         o.config, fmt::join(flags, ", "));
   const fs::path out = o.out;
   // Surfaces from a label map are written only once all of them could be made.
   nlohmann::json label_report;

@@ -22,45 +22,16 @@ std::vector<std::string> load_overrides(const std::vector<std::string>& loads)
   return overrides;
 }
 
-/// The --set assignments, then the flags as the config keys they set (--angles 0,90 is
-/// angles_deg=[0.0, 90.0]): the flags win, and the config's reader checks them as it checks
+/// The --set assignments and the loads, then the flags as the config keys they set (--angles 0,90
+/// is angles_deg=[0.0, 90.0]): the flags win, and the config's reader checks them as it checks
 /// the file. (--model is a path from here, where the config's `model` is from the config.)
 std::vector<std::string> with_flag_assignments(const FlexionOptions& options)
 {
   std::vector<std::string> set = options.set;
-  for (const std::string& load : load_overrides(options.loads))
-    set.push_back(load);
-  const auto add_if = [&](const std::string& key, const auto& value) {
-    if (value)
-      set.push_back(toml_assignment(key, *value));
-  };
-  const auto add_if_any = [&](const std::string& key, const auto& values) {
-    if (!values.empty())
-      set.push_back(toml_assignment(key, values));
-  };
-  add_if_any("angles_deg", options.angles);
-  if (!options.mode.empty())
-    set.push_back(toml_assignment("mode", options.mode));
-  if (!options.axis_points.empty()) {
-    set.push_back(toml_assignment("axis.method", std::string("points")));
-    set.push_back(
-        toml_assignment("axis.first_mm", std::vector<double>(options.axis_points.begin(),
-                                                             options.axis_points.begin() + 3)));
-    set.push_back(
-        toml_assignment("axis.second_mm", std::vector<double>(options.axis_points.begin() + 3,
-                                                              options.axis_points.end())));
-  }
-  if (!options.posterior.empty()) {
-    set.push_back(toml_assignment("axis.method", std::string("condyles")));
-    set.push_back(toml_assignment("axis.posterior", options.posterior));
-  }
-  add_if("material.in_situ_strain", options.in_situ_strain);
-  add_if_any("ligaments", options.ligaments);
-  add_if_any("without", options.without);
-  add_if("interactive.angular_speed_deg_s", options.speed);
-  add_if("interactive.time_step_s", options.time_step);
-  if (!options.contact.empty())
-    set.push_back(toml_assignment("contact.enabled", options.contact == "on"));
+  for (std::string& assignment : load_overrides(options.loads))
+    set.push_back(std::move(assignment));
+  for (std::string& assignment : options.key_flags.assignments())
+    set.push_back(std::move(assignment));
   return set;
 }
 
@@ -74,38 +45,44 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command.add_option("--model", options.model, "output folder of `ligsim build`");
-  command
-      .add_option("--angles", options.angles,
-                  "flexion angles, deg (default 0,15,...,90; --set angles_deg=[...])")
+  auto& keys = options.key_flags;
+  keys.add<std::vector<double>>(command, "--angles", "flexion angles, deg (default 0,15,...,90)",
+                                {"angles_deg"})
       ->delimiter(',');
   auto* axis =
-      command
-          .add_option(
-              "--axis", options.axis_points,
-              "flexion axis through two points x1,y1,z1,x2,y2,z2, mm ([axis] method = \"points\", "
-              "first_mm, second_mm)")
+      keys.add<std::vector<double>>(
+              command, "--axis", "flexion axis through two points x1,y1,z1,x2,y2,z2, mm",
+              {"axis.method", "axis.first_mm", "axis.second_mm"},
+              [](const std::vector<double>& p, const std::vector<std::string>& keys) {
+                return std::vector<std::string>{
+                    toml_assignment(keys[0], std::string("points")),
+                    toml_assignment(keys[1], std::vector<double>(p.begin(), p.begin() + 3)),
+                    toml_assignment(keys[2], std::vector<double>(p.begin() + 3, p.end()))};
+              })
           ->delimiter(',')
           ->expected(6);
-  command
-      .add_option(
-          "--posterior", options.posterior,
-          "posterior direction x,y,z: fit the axis to the posterior condyles ([axis] method = "
-          "\"condyles\", posterior)")
+  keys.add<std::vector<double>>(
+          command, "--posterior",
+          "posterior direction x,y,z: fit the axis to the posterior condyles",
+          {"axis.method", "axis.posterior"},
+          [](const std::vector<double>& direction, const std::vector<std::string>& keys) {
+            return std::vector<std::string>{toml_assignment(keys[0], std::string("condyles")),
+                                            toml_assignment(keys[1], direction)};
+          })
       ->delimiter(',')
       ->expected(3)
       ->excludes(axis);
-  command.add_option("--in-situ-strain", options.in_situ_strain,
-                     "fiber pre-strain of the built pose (default: each ligament's own, as "
-                     "built; this sets them all; --set material.in_situ_strain)");
-  command
-      .add_option(
-          "--ligaments", options.ligaments,
-          "a knee model: the ligaments to sweep, by name (default: all; --set ligaments=[...])")
+  keys.add<double>(command, "--in-situ-strain",
+                   "fiber pre-strain of the built pose (default: each ligament's own, as built; "
+                   "this sets them all)",
+                   {"material.in_situ_strain"});
+  keys.add<std::vector<std::string>>(command, "--ligaments",
+                                     "a knee model: the ligaments to sweep, by name (default: all)",
+                                     {"ligaments"})
       ->delimiter(',');
-  command
-      .add_option("--without", options.without,
-                  "a knee model: ligaments cut, by name (sectioning: the knee without them; --set "
-                  "without=[...])")
+  keys.add<std::vector<std::string>>(
+          command, "--without",
+          "a knee model: ligaments cut, by name (sectioning: the knee without them)", {"without"})
       ->delimiter(',');
   command
       .add_option("--load", options.loads,
@@ -113,22 +90,22 @@ void add_flexion_options(CLI::App& command, FlexionOptions& options, bool intera
                   "anterior_n, valgus_nm, internal_nm), e.g. --load anterior_n=134 (a laxity "
                   "test)")
       ->delimiter(',');
-  command
-      .add_option(
-          "--contact", options.contact,
-          "ligament-bone contact: on (default) or off (the ligament may cross the bones; --set "
-          "contact.enabled)")
+  keys.add<std::string>(
+          command, "--contact",
+          "ligament-bone contact: on (default) or off (the ligament may cross the bones)",
+          {"contact.enabled"},
+          [](const std::string& on, const std::vector<std::string>& keys) {
+            return std::vector<std::string>{toml_assignment(keys[0], on == "on")};
+          })
       ->check(CLI::IsMember({"on", "off"}));
   if (!interactive)
     return;
-  command.add_option("--mode", options.mode, "static (default) or interactive (--set mode)")
+  keys.add<std::string>(command, "--mode", "static (default) or interactive", {"mode"})
       ->check(CLI::IsMember({"static", "interactive"}));
-  command.add_option(
-      "--speed", options.speed,
-      "interactive: femur speed, deg/s (default 45; --set interactive.angular_speed_deg_s)");
-  command.add_option(
-      "--time-step", options.time_step,
-      "interactive: frame time step, s (default 0.01; --set interactive.time_step_s)");
+  keys.add<double>(command, "--speed", "interactive: femur speed, deg/s (default 45)",
+                   {"interactive.angular_speed_deg_s"});
+  keys.add<double>(command, "--time-step", "interactive: frame time step, s (default 0.01)",
+                   {"interactive.time_step_s"});
 }
 
 sim::FlexionSettings flexion_settings_from(const FlexionOptions& options, const std::string& job)

@@ -2,16 +2,12 @@
 /// @brief The flags that set up a flexion sweep, shared by the jobs that run or export one
 /// (`flexion`, `export febio`, `verify febio`): the config file, then the flags over it.
 
+#include "pipeline/commands/key_flags.hpp"
 #include "sim/flexion/flexion_settings.hpp"
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
-
-namespace CLI {
-class App;
-}
 
 namespace ligsim::cli {
 
@@ -19,17 +15,10 @@ struct FlexionOptions {
   std::filesystem::path config;
   std::vector<std::string> set; ///< --set TABLE.KEY=VALUE over the config
   std::filesystem::path model;
-  std::vector<double> angles;
-  std::string mode;
-  std::vector<double> axis_points;
-  std::vector<double> posterior;
-  std::optional<double> in_situ_strain;
-  std::optional<double> speed;
-  std::optional<double> time_step;
-  std::string contact;                ///< "on", "off" or "" (the config's, by default on)
-  std::vector<std::string> ligaments; ///< a knee model's ligaments to sweep (empty: all)
-  std::vector<std::string> without;   ///< a knee model's ligaments cut (sectioned)
-  std::vector<std::string> loads;     ///< a free knee's loads, "KEY=VALUE" over [loads]
+  /// --angles, --axis, --posterior, --in-situ-strain, --ligaments, --without, --contact, --mode,
+  /// --speed, --time-step: short names for config keys
+  KeyFlags key_flags;
+  std::vector<std::string> loads; ///< a free knee's loads, "KEY=VALUE" over [loads]
 };
 
 /// Adds --config, --set, --model, --angles, --axis, --posterior, --in-situ-strain and --contact to

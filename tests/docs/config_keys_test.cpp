@@ -7,11 +7,13 @@
 /// Conventions of the tables: docs/development.md, "Documentation that stays true".
 
 #include "common/error.hpp"
+#include "pipeline/commands/commands.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/membrane/scene/scene.hpp"
 #include "sim/scene/scene.hpp"
 
+#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
@@ -25,6 +27,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -564,6 +567,51 @@ TEST(ConfigKeyDefaults, TheBuildGuidesDefaultsAreTheBuildConfigsOwn)
     ++checked;
   }
   EXPECT_GE(checked, 40) << "too few literal defaults found: is the table still parsed?";
+}
+
+/// The keys the help of `ligsim <job>`'s flags names ("(--set tetmesh.cell_size_mm)"), by flag.
+std::map<std::string, std::vector<std::string>> keys_named_by_flags(const std::string& job)
+{
+  CLI::App app;
+  ligsim::cli::add_build_commands(app);
+  ligsim::cli::add_flexion_command(app);
+  std::map<std::string, std::vector<std::string>> named;
+  const std::regex set(R"(--set ([a-z0-9_.]+(?:(?:, | and )[a-z0-9_.]+)*)\)$)");
+  for (const CLI::Option* option : app.get_subcommand(job)->get_options()) {
+    std::smatch match;
+    const std::string help = option->get_description();
+    if (std::regex_search(help, match, set))
+      named[option->get_name()] =
+          split(std::regex_replace(match[1].str(), std::regex(", | and "), ","), ',');
+  }
+  return named;
+}
+
+TEST(ConfigKeyFlags, EveryKeyAFlagSetsIsAcceptedByItsReader)
+{
+  // A flag is a short name for the keys its help names; its declaration is the one place that
+  // pairs them. A key renamed in the reader and not there fails here, not on a user's command.
+  for (const auto& [job, reader_name, at_least] :
+       {std::tuple{"build", "build", 20}, std::tuple{"flexion", "flexion", 9}}) {
+    const auto named = keys_named_by_flags(job);
+    EXPECT_GE(static_cast<int>(named.size()), at_least)
+        << "too few of `ligsim " << job << "`'s flags name their keys: is the help still parsed?";
+    Reader reader;
+    for (const Reader& r : readers())
+      if (r.name == reader_name)
+        reader = r;
+    for (const auto& [flag, keys] : named)
+      for (const std::string& key : keys) {
+        const KeyPath path = split(key, '.');
+        std::string message;
+        const Answer answer = probe(reader, reader.bases.front(),
+                                    KeyPath(path.begin(), path.end() - 1), path.back(), message);
+        EXPECT_EQ(answer, Answer::accepted)
+            << "ligsim " << job << " " << flag << " sets `" << key << "`, which the " << reader_name
+            << " reader "
+            << (answer == Answer::unknown ? "refuses: " + message : "has no table for");
+      }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeys, ::testing::Values("build", "flexion", "scene", "tear"),
