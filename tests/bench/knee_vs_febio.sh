@@ -1,0 +1,58 @@
+#!/bin/sh
+# Each ligament of the HRA female knee swept by ligsim and by FEBio 4 on the same problem
+# (`ligsim verify febio`: the ligament's own material and in-situ strain, the prescribed passive
+# path of data/hra-knee/flexion.toml): contact off at 0-90 degrees for every ligament (the
+# material, the fibers, the in-situ strain and the rigid motion on the real job), then the MCL
+# with contact on at 0 and 30 degrees (the two contact laws). Prints each comparison's table as
+# Markdown: tests/bench/record.sh writes it as docs/validation/knee-vs-febio.md.
+#
+#   tests/bench/knee_vs_febio.sh OUT [CELL_MM] [LIGSIM]     (CELL_MM default 1.2)
+#   FEBIO=path/to/febio4 (default ../shared/tools/febio/bin/febio4 beside the checkout)
+set -eu
+out=$1
+cell=${2:-1.2}
+ligsim=${3:-build/pipeline/ligsim}
+here=$(cd "$(dirname "$0")/../.." && pwd)
+FEBIO=${FEBIO:-$here/../shared/tools/febio/bin/febio4}
+[ -x "$FEBIO" ] || { echo "knee_vs_febio.sh: no FEBio executable at $FEBIO (set FEBIO)" >&2; exit 2; }
+mkdir -p "$out"
+
+run() {
+  log=$1
+  shift
+  "$@" >"$out/$log.log" 2>&1 || {
+    echo "knee_vs_febio.sh: $log failed ($out/$log.log):" >&2
+    tail -n 5 "$out/$log.log" >&2
+    exit 1
+  }
+}
+
+run build "$ligsim" build --config "$here/data/hra-knee/knee.toml" --out "$out/knee" \
+  --cell-size "$cell" --facet-size "$cell" --no-images
+echo "The female knee of \`data/hra-knee/knee.toml\` built with \`--cell-size $cell --facet-size $cell\`;"
+echo "each ligament swept on the prescribed passive path of \`data/hra-knee/flexion.toml\`."
+echo "FEBio's energy and fiber stretch are its node positions measured by ligsim's law; the"
+echo "whole-run times include ligsim's building of the bones' distance grids."
+
+compare() {
+  name=$1
+  title=$2
+  shift 2
+  run "$name" "$ligsim" verify febio --config "$here/data/hra-knee/flexion.toml" \
+    --febio "$FEBIO" --out "$out/$name" "$@"
+  echo
+  echo "## $title"
+  echo
+  sed -n '/^| angle/,$p' "$out/$name/febio_comparison.md"
+}
+
+for ligament in MCL ACL PCL; do
+  compare "$ligament-off" "$ligament, contact off" --model "$out/knee/$ligament" --contact off \
+    --angles 0,30,60,90
+done
+# FEBio stops between 0 and 30 degrees on the LCL's 30-degree step (negative Jacobians after
+# its time step's retries); one step per 5 degrees gets it through.
+compare LCL-off "LCL, contact off (5-degree steps)" --model "$out/knee/LCL" --contact off \
+  --angles 0,5,10,15,20,25,30,35,40,45,50,55,60,65,70,75,80,85,90
+compare MCL-on "MCL, contact on (ligsim's barrier at d_hat 0.01 mm, FEBio's penalty scaled by 10)" \
+  --model "$out/knee/MCL" --contact on --angles 0,30
