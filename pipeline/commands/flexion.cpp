@@ -9,6 +9,7 @@
 #include "pipeline/render/flexion_pictures.hpp"
 #include "pipeline/render/knee_pictures.hpp"
 #include "pipeline/render/offscreen_display.hpp"
+#include "pipeline/reports/flexion_config_json.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "sim/flexion/error_estimate.hpp"
 #include "sim/flexion/flexion_output.hpp"
@@ -88,25 +89,11 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
     parameters["contact"] = {
         {"model", "IPC barrier on the ligament's free surface nodes, frictionless"},
         {"bones", contact.bones.empty() ? std::vector<std::string>{"every bone of the model"}
-                                        : contact.bones},
-        {"d_hat_mm", contact.barrier.d_hat_mm},
-        {"stiffness_mpa_per_mm", contact.barrier.stiffness_mpa_per_mm},
-        {"voxel_mm", contact.grid.voxel_mm},
-        {"band_mm", contact.grid.band_mm}};
+                                        : contact.bones}};
   else
     parameters["contact"] = "off: the ligament may pass through the bones";
-  if (settings.mode == sim::FlexionMode::quasi_static)
-    parameters["static"] = {{"residual_tolerance", settings.newton.residual_tolerance},
-                            {"max_iterations", settings.newton.max_iterations},
-                            {"max_cutbacks", settings.newton.max_cutbacks},
-                            {"max_substeps", settings.newton.max_substeps},
-                            {"linear_solver", to_string(settings.newton.linear_solver)}};
-  else
-    parameters["interactive"] = {{"angular_speed_deg_s", settings.interactive.angular_speed_deg_s},
-                                 {"time_step_s", settings.interactive.time_step_s},
-                                 {"density_kg_m3", settings.interactive.density_kg_m3},
-                                 {"mass_damping_per_s", settings.interactive.mass_damping_per_s},
-                                 {"linear_solver", to_string(settings.interactive.linear_solver)}};
+  // Every key of the flexion config with the value this run used.
+  parameters["config"] = reports::to_json(settings);
 }
 
 /// Each footprint's area, beside the published one, and its reach from the flexion axis.

@@ -1,6 +1,7 @@
 #include "pipeline/stage_graph/build_config.hpp"
 
 #include "common/error.hpp"
+#include "common/fields_json.hpp"
 #include "common/knee_manifest.hpp"
 #include "common/toml_overrides.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
@@ -34,26 +35,26 @@ toml::table parse_config_file(const fs::path& file, const std::vector<std::strin
 void read_stage_sections(const toml::table& table, const std::string& prefix, const fs::path& file,
                          BuildConfig& config)
 {
-  read_section(&table, "voxelize", prefix + "voxelize", file, config.voxelize,
-               [](auto& p, auto&& v) { visit_voxelize(p, v); });
-  read_section(&table, "centerline", prefix + "centerline", file, config.centerline,
-               [](auto& p, auto&& v) { visit_centerline(p, v); });
-  read_section(&table, "field", prefix + "field", file, config.field,
-               [](auto& p, auto&& v) { visit_field(p, v); });
-  read_section(&table, "tetmesh", prefix + "tetmesh", file, config.tetmesh,
-               [](auto& p, auto&& v) { visit_tetmesh(p, v); });
-  read_section(&table, "fibers", prefix + "fibers", file, config.fibers,
-               [](auto& p, auto&& v) { visit_fibers(p, v); });
-  read_section(&table, "model", prefix + "model", file, config.model,
-               [](auto& p, auto&& v) { visit_model(p, v); });
-  read_section(&table, "error_estimate", prefix + "error_estimate", file, config.error_estimate,
-               [](auto& p, auto&& v) { visit_error_estimate(p, v); });
+  read_fields(&table, "voxelize", prefix + "voxelize", file, config.voxelize,
+              [](auto& p, auto&& v) { visit_voxelize(p, v); });
+  read_fields(&table, "centerline", prefix + "centerline", file, config.centerline,
+              [](auto& p, auto&& v) { visit_centerline(p, v); });
+  read_fields(&table, "field", prefix + "field", file, config.field,
+              [](auto& p, auto&& v) { visit_field(p, v); });
+  read_fields(&table, "tetmesh", prefix + "tetmesh", file, config.tetmesh,
+              [](auto& p, auto&& v) { visit_tetmesh(p, v); });
+  read_fields(&table, "fibers", prefix + "fibers", file, config.fibers,
+              [](auto& p, auto&& v) { visit_fibers(p, v); });
+  read_fields(&table, "model", prefix + "model", file, config.model,
+              [](auto& p, auto&& v) { visit_model(p, v); });
+  read_fields(&table, "error_estimate", prefix + "error_estimate", file, config.error_estimate,
+              [](auto& p, auto&& v) { visit_error_estimate(p, v); });
   const double scale = config.error_estimate.mesh_scale;
   if (scale != 0.0 && !(scale >= companion_min_size_ratio && scale <= 4.0))
     fail("{}: [{}error_estimate] mesh_scale must be 0 (no estimate) or from {} to 4, got {}",
          file.string(), prefix, companion_min_size_ratio, scale);
-  read_section(&table, "flexion", prefix + "flexion", file, config.flexion,
-               [](auto& p, auto&& v) { visit_flexion(p, v); });
+  read_fields(&table, "flexion", prefix + "flexion", file, config.flexion,
+              [](auto& p, auto&& v) { visit_flexion(p, v); });
   if (const toml::table* flexion = table_at(&table, "flexion"))
     config.flexion.axis_given = config.flexion.axis_given || flexion->contains("axis_point_mm") ||
                                 flexion->contains("axis_direction");
@@ -61,8 +62,8 @@ void read_stage_sections(const toml::table& table, const std::string& prefix, co
 
 void read_anatomy_section(const toml::table& table, const fs::path& file, BuildConfig& config)
 {
-  read_section(&table, "anatomy", "anatomy", file, config.anatomy,
-               [](auto& p, auto&& v) { visit_anatomy(p, v); });
+  read_fields(&table, "anatomy", "anatomy", file, config.anatomy,
+              [](auto& p, auto&& v) { visit_anatomy(p, v); });
   if (!config.anatomy.side.empty() && config.anatomy.side != "left" &&
       config.anatomy.side != "right")
     fail("{}: [anatomy] side must be \"left\" or \"right\", got \"{}\"", file.string(),
@@ -95,10 +96,10 @@ std::string read_attachment_sections(const toml::table& table, const std::string
   if (distal.empty())
     distal = distal_bones.front();
   const auto rule = [](auto& r, auto&& visit) { visit_rule(r, visit); };
-  read_section(attachments, "femur", prefix + "attachments.femur", file, config.femur_attachment,
-               rule);
-  read_section(attachments, distal.c_str(), prefix + "attachments." + distal, file,
-               config.tibia_attachment, rule);
+  read_fields(attachments, "femur", prefix + "attachments.femur", file, config.femur_attachment,
+              rule);
+  read_fields(attachments, distal.c_str(), prefix + "attachments." + distal, file,
+              config.tibia_attachment, rule);
   for (attachments::Rule* r : {&config.femur_attachment, &config.tibia_attachment})
     r->patch = relative_to(file, r->patch);
   return distal;
@@ -107,8 +108,8 @@ std::string read_attachment_sections(const toml::table& table, const std::string
 void read_material_section(const toml::table& table, const std::string& prefix,
                            const fs::path& file, BuildConfig& config)
 {
-  read_section(&table, "material", prefix + "material", file, config.material,
-               [](auto& p, auto&& v) { visit_material(p, v); });
+  read_fields(&table, "material", prefix + "material", file, config.material,
+              [](auto& p, auto&& v) { visit_material(p, v); });
 }
 
 } // namespace config_reading
@@ -195,27 +196,11 @@ std::string apply_part_defaults(BuildConfig& config)
 namespace {
 
 /// Writes each visited parameter as a JSON member.
-struct JsonWriter {
-  nlohmann::json& json;
-
-  template <class T> void operator()(const char* key, const T& value) { json[key] = value; }
-
-  void operator()(const char* key, const Eigen::Vector3d& value)
-  {
-    json[key] = {value.x(), value.y(), value.z()};
-  }
-
-  template <class E> void operator()(const char* key, Choice<E> choice)
-  {
-    json[key] = choice.name(choice.value);
-  }
-};
-
 template <class P, class VisitFields>
 nlohmann::json as_json(const P& parameters, VisitFields visit_fields)
 {
   nlohmann::json json = nlohmann::json::object();
-  visit_fields(parameters, JsonWriter{json});
+  visit_fields(parameters, FieldJsonWriter{json});
   return json;
 }
 

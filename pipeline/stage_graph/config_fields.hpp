@@ -3,26 +3,13 @@
 /// file, writing summary.json and keying the stage cache all walk these lists, so none of them
 /// can miss a parameter.
 
+#include "common/config_choice.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 
 #include <string>
 #include <type_traits>
 
 namespace ligsim::pipeline {
-
-/// An enumerated parameter, spelled as text in the config and in summary.json.
-template <class E> struct Choice {
-  E& value;
-  std::remove_const_t<E> (*parse)(const std::string&);
-  std::string (*name)(std::remove_const_t<E>);
-};
-
-template <class E>
-Choice<E> choice(E& value, std::remove_const_t<E> (*parse)(const std::string&),
-                 std::string (*name)(std::remove_const_t<E>))
-{
-  return {value, parse, name};
-}
 
 // Each visit_fields(parameters, visit) calls visit(key, member) for every parameter; the
 // parameters may be const (writing) or not (reading).
@@ -69,7 +56,8 @@ template <class P, class Visit> void visit_voxelize(P& p, Visit&& visit)
 template <class P, class Visit> void visit_centerline(P& p, Visit&& visit)
 {
   visit("alpha", p.alpha);
-  visit("span", choice(p.span, centerline::parse_span, centerline::to_string));
+  visit("span", choice(p.span, centerline::to_string,
+                       {centerline::Span::means, centerline::Span::attachments}));
   visit("refine", p.refine);
   visit("relax_iterations", p.relax_iterations);
   visit("extend_to_surface", p.extend_to_surface);
@@ -79,7 +67,8 @@ template <class P, class Visit> void visit_centerline(P& p, Visit&& visit)
 
 template <class P, class Visit> void visit_field(P& p, Visit&& visit)
 {
-  visit("method", choice(p.method, field::parse_method, field::to_string));
+  visit("method",
+        choice(p.method, field::to_string, {field::Method::geometric, field::Method::laplace}));
   visit("laplace_tolerance", p.laplace_tolerance);
   visit("laplace_max_iterations", p.laplace_max_iterations);
 }

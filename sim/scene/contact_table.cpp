@@ -1,19 +1,23 @@
 #include "sim/scene/contact_table.hpp"
 
+#include "common/config_section.hpp"
+
 #include <algorithm>
 
 namespace ligsim::sim {
 
+void widen_band_to_barrier(ContactConfig& config)
+{
+  config.grid.band_mm =
+      std::max(config.grid.band_mm, config.barrier.d_hat_mm + 2.0 * config.grid.voxel_mm);
+}
+
 void read_contact_table(TomlTable& table, ContactConfig& config)
 {
-  if (table.has("enabled"))
-    config.enabled = table.boolean("enabled", true);
-  config.barrier.d_hat_mm = table.number("d_hat_mm", config.barrier.d_hat_mm);
-  config.barrier.stiffness_mpa_per_mm =
-      table.number("stiffness_mpa_per_mm", config.barrier.stiffness_mpa_per_mm);
-  config.grid.voxel_mm = table.number("voxel_mm", config.grid.voxel_mm);
-  const double least_band = config.barrier.d_hat_mm + 2.0 * config.grid.voxel_mm;
-  config.grid.band_mm = table.number("band_mm", std::max(config.grid.band_mm, least_band));
+  ConfigSection section(table);
+  visit_contact(config, FieldReader{section});
+  if (!table.has("band_mm"))
+    widen_band_to_barrier(config);
 }
 
 } // namespace ligsim::sim

@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "pipeline/commands/commands.hpp"
+#include "pipeline/reports/flexion_config_json.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/membrane/scene/scene.hpp"
@@ -226,7 +227,8 @@ angles_deg = [0, 30]
 [articular]
 [free]
 )"},
-                  {"sim/flexion/flexion_config.cpp", "sim/scene/contact_table.cpp"},
+                  {"sim/flexion/flexion_config.cpp", "sim/flexion/flexion_fields.hpp",
+                   "sim/scene/contact_table.hpp"},
                   [](const std::string& text, const fs::path& folder) {
                     ligsim::sim::FlexionSettings settings;
                     ligsim::sim::parse_flexion_config(text, folder, "flexion.toml", settings);
@@ -268,7 +270,7 @@ follows = "corner"
             "bend_deg = 10\n[solver]\n" +
                 scene_sets,
             std::regex(R"(\{ (plane|box) = .*\} \})"), "{ nodes = [1, 2] }")},
-       {"sim/scene/scene_file.cpp", "sim/scene/contact_table.cpp"},
+       {"sim/scene/scene_file.cpp", "sim/scene/contact_table.hpp"},
        [](const std::string& text, const fs::path& folder) {
          ligsim::sim::parse_scene(text, folder, "scene.toml");
        }});
@@ -532,20 +534,36 @@ std::string literal_default(const std::string& cell)
   return "";
 }
 
-TEST(ConfigKeyDefaults, TheBuildGuidesDefaultsAreTheBuildConfigsOwn)
+/// Everything a config sets, as JSON, from the same key lists its reader walks.
+nlohmann::json parameters_of(const std::string& reader, const std::string& text)
 {
-  // The defaults live once, in the parameters' declarations: a key set to the default the guide
-  // gives it must leave the whole config (summary.json's parameters) as it was.
-  const std::string base = readers().front().bases.front();
-  const auto parameters = [](const std::string& text) {
+  if (reader == "build") {
     write_text(scratch_folder() / "defaults.toml", text);
     return ligsim::pipeline::to_json(
         ligsim::pipeline::load_build_config(scratch_folder() / "defaults.toml"));
-  };
-  const nlohmann::json unset = parameters(base);
+  }
+  ligsim::sim::FlexionSettings settings;
+  ligsim::sim::parse_flexion_config(text, scratch_folder(), "flexion.toml", settings);
+  nlohmann::json json = ligsim::reports::to_json(settings);
+  json["given"] = settings.given; // what a key set rather than left at its default
+  return json;
+}
+
+class ConfigKeyDefaults : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ConfigKeyDefaults, TheGuidesDefaultsAreTheReadersOwn)
+{
+  // The defaults live once, in the parameters' declarations: a key set to the default the guide
+  // gives it must leave the whole config as it was.
+  const std::string reader = GetParam();
+  std::string base;
+  for (const Reader& r : readers())
+    if (r.name == reader)
+      base = r.bases.front();
+  const nlohmann::json unset = parameters_of(reader, base);
   int checked = 0;
   const std::map<std::string, std::vector<DocumentedKey>> documented = documented_keys();
-  for (const DocumentedKey& key : documented.at("build")) {
+  for (const DocumentedKey& key : documented.at(reader)) {
     const std::string value = literal_default(key.default_text);
     const KeyPath table_path(key.path.begin(), key.path.end() - 1);
     toml::table document = toml::parse(base);
@@ -557,7 +575,10 @@ TEST(ConfigKeyDefaults, TheBuildGuidesDefaultsAreTheBuildConfigsOwn)
     std::ostringstream text;
     text << document << "\n";
     // As text: unset points are NaN, which equals nothing, and null in the text.
-    const nlohmann::json set = parameters(text.str());
+    nlohmann::json set = parameters_of(reader, text.str());
+    // A key given is recorded as given: that is not a change of its value.
+    if (set.contains("given"))
+      set["given"] = unset["given"];
     EXPECT_TRUE(set.dump() == unset.dump())
         << key.where << ": the guide gives `" << joined(key.path) << "` the default " << value
         << ", but setting it changes "
@@ -566,8 +587,12 @@ TEST(ConfigKeyDefaults, TheBuildGuidesDefaultsAreTheBuildConfigsOwn)
                .dump();
     ++checked;
   }
-  EXPECT_GE(checked, 40) << "too few literal defaults found: is the table still parsed?";
+  EXPECT_GE(checked, reader == "build" ? 40 : 35)
+      << "too few literal defaults found: is the table still parsed?";
 }
+
+INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeyDefaults, ::testing::Values("build", "flexion"),
+                         [](const auto& info) { return info.param; });
 
 /// The keys the help of `ligsim <job>`'s flags names ("(--set tetmesh.cell_size_mm)"), by flag.
 std::map<std::string, std::vector<std::string>> keys_named_by_flags(const std::string& job)
