@@ -45,25 +45,12 @@ FlexionOutput::FlexionOutput(std::vector<OutputLigament> ligaments, const KneeMo
       ensure_directory(m_directory / ligament.folder);
 }
 
-FlexionOutput::FlexionOutput(const HyperelasticBody& body, const KneeModel& model,
-                             RigidMotion femur, fs::path directory)
-    : FlexionOutput({{"ligament", "", model.distal_bone}}, model, std::move(femur),
-                    std::move(directory))
-{
-  m_body = &body;
-}
-
 TriangleSurface FlexionOutput::moved_femur(double load_factor) const
 {
   const Eigen::Isometry3d pose = m_femur.pose(load_factor);
   TriangleSurface femur = *m_femur_surface;
   femur.V = (femur.V * pose.linear().transpose()).rowwise() + pose.translation().transpose();
   return femur;
-}
-
-fs::path FlexionOutput::write_angle(const AngleResult& angle, const Eigen::VectorXd& x)
-{
-  return write_angle(0, *m_body, angle, x);
 }
 
 fs::path FlexionOutput::write_angle(std::size_t ligament, const HyperelasticBody& body,
@@ -89,11 +76,6 @@ fs::path FlexionOutput::write_angle(std::size_t ligament, const HyperelasticBody
       m_series.push_back({time, bones + 2, "fibula.vtp"});
   }
   return written;
-}
-
-void FlexionOutput::finish(const std::vector<AngleResult>& angles) const
-{
-  finish(std::vector<std::vector<AngleResult>>{angles});
 }
 
 void FlexionOutput::finish(const std::vector<std::vector<AngleResult>>& angles) const

@@ -33,28 +33,20 @@ public:
   /// the tibia and the fibula fixed) in `directory`.
   FlexionOutput(std::vector<OutputLigament> ligaments, const KneeModel& bones, RigidMotion femur,
                 std::filesystem::path directory);
-  /// One ligament, `body`, written in `directory` itself.
-  FlexionOutput(const HyperelasticBody& body, const KneeModel& model, RigidMotion femur,
-                std::filesystem::path directory);
 
   /// Writes ligament `ligament`'s state at the angle (ligament_<angle>.vtu in its folder) and the
   /// femur at the angle if not yet written; returns the ligament's file (for the pictures).
   std::filesystem::path write_angle(std::size_t ligament, const HyperelasticBody& body,
                                     const AngleResult& angle, const Eigen::VectorXd& x);
-  /// The same for the one body of the second constructor.
-  std::filesystem::path write_angle(const AngleResult& angle, const Eigen::VectorXd& x);
   /// Writes flexion.pvd for the angles written so far, and flexion.csv (a row per ligament and
   /// angle) and strain_energy.svg for `angles`, one list per ligament.
   void finish(const std::vector<std::vector<AngleResult>>& angles) const;
-  /// The same for one ligament.
-  void finish(const std::vector<AngleResult>& angles) const;
 
   /// The femur surface in its pose at load factor t.
   TriangleSurface moved_femur(double load_factor) const;
 
 private:
   std::vector<OutputLigament> m_ligaments;
-  const HyperelasticBody* m_body = nullptr; ///< the one body of the second constructor
   BoneSurface m_femur_surface, m_tibia, m_fibula;
   RigidMotion m_femur;
   std::filesystem::path m_directory;

@@ -328,7 +328,9 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
       contact =
           std::make_unique<KneeContact>(knee, conditions, settings.contact, loaded.dir / "contact");
     ensure_directory(directory);
-    FlexionOutput output(body, knee, *conditions.constraints.back().rigid, directory);
+    // One ligament, named "ligament", written in `directory` itself: a knee of one ligament.
+    FlexionOutput output({{"ligament", "", knee.distal_bone}}, knee,
+                         *conditions.constraints.back().rigid, directory);
     const bool quasi_static = settings.mode == FlexionMode::quasi_static;
     const double last = settings.angles_deg.back();
     const SweepResult sweep = run_flexion_sweep(
@@ -343,7 +345,7 @@ FlexionCaseResult FlexionStabilitySuite::run(const std::string& name, const fs::
           }
         },
         contact.get());
-    output.finish(sweep.angles);
+    output.finish(std::vector<std::vector<AngleResult>>{sweep.angles});
     result.angles = sweep.angles;
     result.diagnostic = sweep.failure;
     const bool all_reached = sweep.success && sweep.angles.size() == settings.angles_deg.size();
