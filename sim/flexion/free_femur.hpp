@@ -12,6 +12,13 @@
 /// that energy and a trust region that keeps a lax knee from wandering. Rotations enter the
 /// unknowns times `rotation_scale_mm`, so that both kinds of step and of residual are in
 /// millimetres and newtons.
+///
+/// This is the one Newton iteration of sim/ outside NewtonEngine, and why: its unknowns are five
+/// pose coordinates, not a body's nodes, and each evaluation of its energy is four of the
+/// engine's own solves (each ligament's equilibrium at the trial pose), so its step, line search
+/// and trust region work on a dense 5 x 5 Schur complement the engine's sparse, element-wise
+/// machinery has no use for. Folding the pose into the engine's unknowns (one monolithic solve
+/// of nodes and pose) would remove it; that is a different algorithm, with its own figures.
 
 #include "sim/flexion/articular_contact.hpp"
 #include "sim/flexion/ligament_at_pose.hpp"

@@ -5,6 +5,11 @@
 /// limit point (past it no equilibrium is near); arc length turns round it, locates it and
 /// follows the path until lambda reaches its target. Where the scene allows: supports that do
 /// not move, nodal forces, no contact.
+///
+/// Its corrector iterates on its own rather than through NewtonEngine: it solves the residual
+/// and the arc-length constraint together for (u, lambda), a bordered system with no energy to
+/// descend, where the engine minimises a potential at a fixed load factor with a line search on
+/// it. The tests drive it with a von Mises truss through the abstract EquilibriumSystem.
 
 #include "sim/solver/boundary_conditions.hpp"
 #include "sim/solver/hyperelastic_body.hpp"
