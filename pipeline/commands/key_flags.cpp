@@ -9,10 +9,14 @@ namespace ligsim::cli {
 CLI::Option* KeyFlags::add_switch(CLI::App& command, const std::string& flag,
                                   const std::string& help, const std::string& key)
 {
-  CLI::Option* option = command.add_flag(flag)->description(with_keys(help, {key}));
-  m_flags.push_back({option, {key}, [](const std::vector<std::string>& prefixed) {
-                       return std::vector<std::string>{toml_assignment(prefixed.front(), true)};
-                     }});
+  auto on = std::make_shared<bool>(false);
+  CLI::Option* option = command.add_flag(flag, *on)->description(with_keys(help, {key}));
+  // `--strict=false` is given but off: it sets nothing.
+  m_flags.push_back(
+      {option, {key}, [on](const std::vector<std::string>& prefixed) {
+         return *on ? std::vector<std::string>{toml_assignment(prefixed.front(), true)}
+                    : std::vector<std::string>{};
+       }});
   return option;
 }
 

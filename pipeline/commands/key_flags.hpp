@@ -42,7 +42,7 @@ public:
     return option;
   }
 
-  /// A flag without a value that sets `key` to true.
+  /// A flag without a value that sets `key` to true (`--flag=false`: nothing).
   CLI::Option* add_switch(CLI::App& command, const std::string& flag, const std::string& help,
                           const std::string& key);
 

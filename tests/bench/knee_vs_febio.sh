@@ -11,8 +11,8 @@
 set -eu
 out=$1
 cell=${2:-1.2}
-ligsim=${3:-build/pipeline/ligsim}
 here=$(cd "$(dirname "$0")/../.." && pwd)
+ligsim=${3:-$here/build/pipeline/ligsim}
 FEBIO=${FEBIO:-$here/../shared/tools/febio/bin/febio4}
 [ -x "$FEBIO" ] || { echo "knee_vs_febio.sh: no FEBio executable at $FEBIO (set FEBIO)" >&2; exit 2; }
 mkdir -p "$out"

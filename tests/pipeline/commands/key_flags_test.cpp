@@ -60,6 +60,13 @@ TEST(KeyFlags, NoFlagGivenAssignsNothing)
   EXPECT_TRUE(c.flags.assignments().empty());
 }
 
+TEST(KeyFlags, ASwitchGivenAsFalseSetsNothing)
+{
+  Command c;
+  c.parse({"--strict=false"});
+  EXPECT_TRUE(c.flags.assignments().empty());
+}
+
 TEST(KeyFlags, ListsAndWholeNumbersAreWrittenAsTheirTomlTypes)
 {
   Command c;
