@@ -1,4 +1,4 @@
-#!/bin/sh
+#!/bin/bash
 # Each ligament of the HRA female knee swept by ligsim and by FEBio 4 on the same problem
 # (`ligsim verify febio`: the ligament's own material and in-situ strain, the prescribed passive
 # path of data/hra-knee/flexion.toml): contact off at 0-90 degrees for every ligament (the
@@ -6,28 +6,19 @@
 # with contact on at 0-30 degrees (the two contact laws). Prints each comparison's table as
 # Markdown: tests/bench/record.sh writes it as docs/validation/knee-vs-febio.md.
 #
-#   tests/bench/knee_vs_febio.sh OUT [CELL_MM] [LIGSIM]     (CELL_MM default 1.2)
-#   FEBIO=path/to/febio4 (default ../shared/tools/febio/bin/febio4 beside the checkout)
-set -eu
-out=$1
+#   tests/bench/knee_vs_febio.sh OUT [CELL_MM]     (CELL_MM default 1.2)
+#   FEBIO=path/to/febio4 (default ../shared/tools/febio/bin/febio4 beside the checkout),
+#   LIGSIM=path/to/ligsim (default build/pipeline/ligsim)
+set -euo pipefail
+OUT=$1
 cell=${2:-1.2}
-here=$(cd "$(dirname "$0")/../.." && pwd)
-ligsim=${3:-$here/build/pipeline/ligsim}
-FEBIO=${FEBIO:-$here/../shared/tools/febio/bin/febio4}
+
+# shellcheck source=tests/bench/timed_runs.sh
+source "$(dirname "$0")/timed_runs.sh"
+FEBIO=${FEBIO:-$SRC/../shared/tools/febio/bin/febio4}
 [ -x "$FEBIO" ] || { echo "knee_vs_febio.sh: no FEBio executable at $FEBIO (set FEBIO)" >&2; exit 2; }
-mkdir -p "$out"
 
-run() {
-  log=$1
-  shift
-  "$@" >"$out/$log.log" 2>&1 || {
-    echo "knee_vs_febio.sh: $log failed ($out/$log.log):" >&2
-    tail -n 5 "$out/$log.log" >&2
-    exit 1
-  }
-}
-
-run build "$ligsim" build --config "$here/data/hra-knee/knee.toml" --out "$out/knee" \
+run build "$LIGSIM" build --config "$SRC/data/hra-knee/knee.toml" --out "$OUT/knee" \
   --cell-size "$cell" --facet-size "$cell" --no-images
 echo "The female knee of \`data/hra-knee/knee.toml\` built with \`--cell-size $cell --facet-size $cell\`;"
 echo "each ligament swept on the prescribed passive path of \`data/hra-knee/flexion.toml\`."
@@ -38,22 +29,22 @@ compare() {
   name=$1
   title=$2
   shift 2
-  run "$name" "$ligsim" verify febio --config "$here/data/hra-knee/flexion.toml" \
-    --febio "$FEBIO" --out "$out/$name" "$@"
+  run "$name" "$LIGSIM" verify febio --config "$SRC/data/hra-knee/flexion.toml" \
+    --febio "$FEBIO" --out "$OUT/$name" "$@"
   echo
   echo "## $title"
   echo
-  sed -n '/^| angle/,$p' "$out/$name/febio_comparison.md"
+  sed -n '/^| angle/,$p' "$OUT/$name/febio_comparison.md"
 }
 
 # One step per 10 degrees (FEBio stops on the MCL's 30-degree steps, with negative Jacobians
 # after its time step's retries, where ours converges), and per 5 degrees for the LCL (on
 # 30-degree steps FEBio stopped between 0 and 30 degrees).
 for ligament in MCL ACL PCL; do
-  compare "$ligament-off" "$ligament, contact off" --model "$out/knee/$ligament" --contact off \
+  compare "$ligament-off" "$ligament, contact off" --model "$OUT/knee/$ligament" --contact off \
     --angles 0,10,20,30,40,50,60,70,80,90
 done
-compare LCL-off "LCL, contact off (5-degree steps)" --model "$out/knee/LCL" --contact off \
+compare LCL-off "LCL, contact off (5-degree steps)" --model "$OUT/knee/LCL" --contact off \
   --angles 0,5,10,15,20,25,30,35,40,45,50,55,60,65,70,75,80,85,90
 compare MCL-on "MCL, contact on (ligsim's barrier at d_hat 0.01 mm, FEBio's penalty scaled by 10)" \
-  --model "$out/knee/MCL" --contact on --angles 0,10,20,30
+  --model "$OUT/knee/MCL" --contact on --angles 0,10,20,30
