@@ -3,6 +3,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/fields_json.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
@@ -12,6 +13,7 @@
 #include "pipeline/reports/flexion_config_json.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "sim/flexion/error_estimate.hpp"
+#include "sim/flexion/flexion_fields.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
@@ -44,17 +46,12 @@ struct FlexionJobOptions {
   bool no_error_estimate = false;
 };
 
-/// The Weiss material's parameters as summary.json records them.
+/// The Weiss material's parameters as summary.json records them: as [material] names them.
 nlohmann::json material_json(const sim::MaterialParameters& m)
 {
-  return {{"mu_mpa", m.mu_mpa},
-          {"k_mpa", m.bulk_modulus_mpa},
-          {"volumetric", to_string(m.volumetric)},
-          {"c3_mpa", m.fiber->c3_mpa},
-          {"c4", m.fiber->c4},
-          {"c5_mpa", m.fiber->c5_mpa},
-          {"lambda_star", m.fiber->lambda_star},
-          {"convention", to_string(m.fiber->convention)}};
+  nlohmann::json json = nlohmann::json::object();
+  sim::visit_weiss_material(m, FieldJsonWriter{json});
+  return json;
 }
 
 void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,

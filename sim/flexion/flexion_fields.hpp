@@ -64,10 +64,9 @@ template <class S, class Visit> void visit_ligament(S& l, Visit&& visit)
   visit("strain_region_radius_mm", l.strain_region_radius_mm);
 }
 
-/// [material]: the material of every ligament, and the in-situ strain.
-template <class S, class Visit> void visit_material(S& s, Visit&& visit)
+/// The Weiss material's parameters, as [material] names them (summary.json writes them so too).
+template <class M, class Visit> void visit_weiss_material(M& m, Visit&& visit)
 {
-  auto& m = s.material;
   auto& f = *m.fiber;
   visit("mu_mpa", m.mu_mpa);
   visit("k_mpa", m.bulk_modulus_mpa);
@@ -78,6 +77,12 @@ template <class S, class Visit> void visit_material(S& s, Visit&& visit)
   visit("lambda_star", f.lambda_star);
   visit("convention",
         choice(f.convention, to_string, {FiberConvention::paper, FiberConvention::weiss}));
+}
+
+/// [material]: the material of every ligament, and the in-situ strain.
+template <class S, class Visit> void visit_material(S& s, Visit&& visit)
+{
+  visit_weiss_material(s.material, visit);
   visit("in_situ_strain", s.in_situ_strain);
 }
 
