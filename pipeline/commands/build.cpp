@@ -319,7 +319,13 @@ void run_labelled_knee_job(const BuildOptions& o, const std::string& target)
   knee.config = config.string();
   knee.labels.clear();
   knee.colour_table.clear();
-  run_knee_build_job(knee, target, {{"labels", found.labels}, {"notes", found.notes}});
+  try {
+    run_knee_build_job(knee, target, {{"labels", found.labels}, {"notes", found.notes}});
+  } catch (const InputError& e) {
+    fail("{} (the knee the map's names describe is {}: edit it, leaving a ligament out if need "
+         "be, and build it with `ligsim build --config {} --out {}`)",
+         e.what(), config.string(), config.string(), out.string());
+  }
 }
 
 void run_build_job(const BuildOptions& o, const std::string& target)

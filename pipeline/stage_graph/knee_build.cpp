@@ -1,6 +1,7 @@
 #include "pipeline/stage_graph/knee_build.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/error.hpp"
 #include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
@@ -83,9 +84,16 @@ void build_knee_ligament(const KneeConfig& knee, const LigamentConfig& ligament,
                   {"femur", ligament.build.femur.string()},
                   {ligament.distal_bone, ligament.build.tibia.string()}};
   own.parameters() = to_json(ligament.build);
-  run_target(ligament.build, dir / ligament.name, target, force, own);
-  if (target == "model")
-    build_companion(ligament.build, dir / ligament.name, force, own);
+  // A stage's error names its ligament: the knee builds several, one after another.
+  try {
+    run_target(ligament.build, dir / ligament.name, target, force, own);
+    if (target == "model")
+      build_companion(ligament.build, dir / ligament.name, force, own);
+  } catch (const InputError& e) {
+    fail("ligament {}: {}", ligament.name, e.what());
+  } catch (const SolverError& e) {
+    fail<SolverError>("ligament {}: {}", ligament.name, e.what());
+  }
   own.write(dir / ligament.name);
   for (const auto& [stage, entry] : own.json()["stages"].items())
     summary.stage(ligament.name + "/" + stage) = entry;

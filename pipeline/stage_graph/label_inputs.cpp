@@ -61,6 +61,28 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
           {"colour_tables", table_names}};
 }
 
+/// The share of a ligament's voxels that may lie outside its largest piece and be dropped as
+/// stray voxels. More, and the ligament itself fell apart: a band thinner than the map's voxels
+/// breaks between them (the HRA male PCL at 1 mm slices keeps 52 % in its largest piece).
+constexpr double kLigamentStrayShare = 0.05;
+
+/// Refuses a ligament label that is in pieces: its model would be a part of the ligament.
+void check_ligament_in_one_piece(const labelmap::Selection& s, const labelmap::LabelImage& image)
+{
+  const long kept = s.voxels - s.filled_hole_voxels;
+  const long labelled = kept + s.dropped_voxels;
+  if (static_cast<double>(s.dropped_voxels) <= kLigamentStrayShare * static_cast<double>(labelled))
+    return;
+  const Eigen::Vector3d& h = image.spacing_mm;
+  fail("label {} is in {} pieces (26-connected voxels): its largest holds {} of its {} voxels "
+       "({:.0f} %), and at most {:.0f} % may be dropped as stray voxels. A ligament thinner than "
+       "the map's voxels ({:.3g} x {:.3g} x {:.3g} mm) breaks between them: segment it at a "
+       "finer spacing (thinner slices), or join its pieces in the label",
+       s.label, s.components, kept, labelled,
+       100.0 * static_cast<double>(kept) / static_cast<double>(labelled),
+       100.0 * kLigamentStrayShare, h.x(), h.y(), h.z());
+}
+
 /// A bone's label, or several joined by '+' ("femur+femoral_cartilage", "2+7+8"): the bone with
 /// the cartilage on it, one part whose surface the articular contact meets. The labels' numbers,
 /// the bone's first.
@@ -131,6 +153,8 @@ nlohmann::json write_label_surfaces(const fs::path& labels, const fs::path& colo
         with_cartilage = joined(image, values);
       surface = labelmap::label_surface(with_cartilage ? *with_cartilage : image, values.front(),
                                         &selection, 30, !part.bone);
+      if (!part.bone)
+        check_ligament_in_one_piece(selection, image);
       if (selection.contour != "smoothed")
         log_info(fmt::format("{}: the smoothed surface of label {} crossed itself ({}{} triangle "
                              "pairs); made again as the half level of the blurred mask",

@@ -4,6 +4,7 @@
 /// out in the image's physical frame, on the analytic cylinder, with the centerline along its
 /// axis.
 
+#include "common/error.hpp"
 #include "common/vtk_files.hpp"
 #include "pipeline/stage_graph/label_inputs.hpp"
 #include "stages/geometry/surface_topology.hpp"
@@ -180,4 +181,50 @@ TEST(BuildLabels, BoneWithCornerTouchingBlobsComesOutAsOneShell)
   for (int v = 0; v < static_cast<int>(parent.size()); ++v)
     shells += root(v) == v ? 1 : 0;
   EXPECT_EQ(shells, 1);
+}
+
+TEST(BuildLabels, LigamentInPiecesIsRefusedAndAStrayVoxelIsDropped)
+{
+  // A ligament (label 1) as a 4 x 4 x 20 voxel bar, and a bone (label 2) elsewhere. A stray
+  // voxel beside the bar is dropped; the bar cut in two halves by one empty slice is refused,
+  // naming the ligament and its pieces, since its model would be a part of it.
+  const auto map_with = [](bool cut) {
+    labelmap::LabelImage image;
+    image.dims = {20, 20, 30};
+    image.labels.assign(20 * 20 * 30, 0);
+    for (int k = 4; k < 24; ++k)
+      for (int j = 4; j < 8; ++j)
+        for (int i = 4; i < 8; ++i)
+          image(i, j, k) = cut && k == 14 ? 0 : 1;
+    image(12, 5, 10) = 1; // the stray voxel
+    for (int k = 4; k < 14; ++k)
+      for (int j = 12; j < 18; ++j)
+        for (int i = 12; i < 18; ++i)
+          image(i, j, k) = 2;
+    return image;
+  };
+  const fs::path dir = fresh_folder("labels_pieces");
+  fs::create_directories(dir);
+  pipeline::BuildConfig config;
+  config.labels = dir / "knee.nrrd";
+  config.ligament_label = "1";
+  config.tibia_label = "2";
+  nlohmann::json report;
+
+  labelmap::write_label_image(map_with(false), config.labels);
+  pipeline::surfaces_from_labels(config, dir, report);
+  EXPECT_EQ(report["ligament"]["components"].get<int>(), 2) << report["ligament"].dump();
+  EXPECT_EQ(report["ligament"]["dropped_voxels"].get<int>(), 1) << report["ligament"].dump();
+
+  labelmap::write_label_image(map_with(true), config.labels);
+  try {
+    pipeline::surfaces_from_labels(config, dir, report);
+    ADD_FAILURE() << "a ligament in two halves was taken";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("ligament: label 1 is in 3 pieces"), std::string::npos) << message;
+    EXPECT_NE(message.find("holds 160 of its 305 voxels (52 %)"), std::string::npos) << message;
+    EXPECT_NE(message.find("finer spacing"), std::string::npos) << message;
+  }
+  fs::remove_all(dir);
 }
