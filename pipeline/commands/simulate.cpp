@@ -1,4 +1,5 @@
 #include "pipeline/commands/commands.hpp"
+#include "pipeline/reports/scene_config_json.hpp"
 #include "pipeline/scenes/scene_runner.hpp"
 
 #include "common/error.hpp"
@@ -36,28 +37,7 @@ void run_simulate(const SimulateOptions& options)
   const sim::Scene scene = sim::load_scene(options.scene, options.set);
   summary.inputs()["mesh"] = scene.mesh_source;
   nlohmann::json& parameters = summary.parameters();
-  parameters["kind"] = scene.kind == sim::SceneKind::quasi_static ? "static" : "dynamic";
-  parameters["mu_mpa"] = scene.material.mu_mpa;
-  parameters["k_mpa"] = scene.material.bulk_modulus_mpa;
-  parameters["volumetric"] = to_string(scene.material.volumetric);
-  if (scene.material.fiber) {
-    const sim::FiberParameters& fiber = *scene.material.fiber;
-    parameters["fiber"] = {{"c3_mpa", fiber.c3_mpa},
-                           {"c4", fiber.c4},
-                           {"c5_mpa", fiber.c5_mpa},
-                           {"lambda_star", fiber.lambda_star},
-                           {"convention", to_string(fiber.convention)}};
-  }
-  if (scene.kind == sim::SceneKind::quasi_static) {
-    parameters["load_steps"] = scene.newton.load_steps;
-    parameters["residual_tolerance"] = scene.newton.residual_tolerance;
-    parameters["linear_solver"] = to_string(scene.newton.linear_solver);
-  } else {
-    parameters["time_step_s"] = scene.dynamics.time_step_s;
-    parameters["frames"] = scene.dynamics.frames;
-    parameters["until_converged"] = scene.dynamics.until_converged;
-    parameters["linear_solver"] = to_string(scene.dynamics.linear_solver);
-  }
+  parameters["config"] = reports::to_json(scene);
   nlohmann::json sets = nlohmann::json::object();
   for (const auto& [name, nodes] : scene.node_sets)
     sets[name] = nodes.size();

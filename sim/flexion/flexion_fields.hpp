@@ -7,7 +7,9 @@
 
 #include "common/config_choice.hpp"
 #include "sim/flexion/flexion_settings.hpp"
+#include "sim/material/material_fields.hpp"
 #include "sim/scene/contact_table.hpp"
+#include "sim/solver/newton_fields.hpp"
 
 namespace ligsim::sim {
 
@@ -64,37 +66,11 @@ template <class S, class Visit> void visit_ligament(S& l, Visit&& visit)
   visit("strain_region_radius_mm", l.strain_region_radius_mm);
 }
 
-/// The Weiss material's parameters, as [material] names them (summary.json writes them so too).
-template <class M, class Visit> void visit_weiss_material(M& m, Visit&& visit)
-{
-  auto& f = *m.fiber;
-  visit("mu_mpa", m.mu_mpa);
-  visit("k_mpa", m.bulk_modulus_mpa);
-  visit("volumetric", choice(m.volumetric, to_string, {VolumetricLaw::jm1, VolumetricLaw::lnj}));
-  visit("c3_mpa", f.c3_mpa);
-  visit("c4", f.c4);
-  visit("c5_mpa", f.c5_mpa);
-  visit("lambda_star", f.lambda_star);
-  visit("convention",
-        choice(f.convention, to_string, {FiberConvention::paper, FiberConvention::weiss}));
-}
-
 /// [material]: the material of every ligament, and the in-situ strain.
 template <class S, class Visit> void visit_material(S& s, Visit&& visit)
 {
   visit_weiss_material(s.material, visit);
   visit("in_situ_strain", s.in_situ_strain);
-}
-
-template <class S, class Visit> void visit_static(S& n, Visit&& visit)
-{
-  visit("residual_tolerance", n.residual_tolerance);
-  visit("max_iterations", n.max_iterations);
-  visit("max_cutbacks", n.max_cutbacks);
-  visit("max_substeps", n.max_substeps);
-  visit("verbose", n.verbose);
-  visit("linear_solver",
-        choice(n.linear_solver, to_string, {LinearSolverKind::direct, LinearSolverKind::pcg}));
 }
 
 template <class S, class Visit> void visit_interactive(S& i, Visit&& visit)
@@ -156,7 +132,7 @@ template <class S, class VisitTable> void visit_flexion_tables(S& s, VisitTable&
   visit_table("motion", s.motion, [](auto& p, auto&& v) { visit_motion(p, v); });
   visit_table("ligament", s.ligament, [](auto& p, auto&& v) { visit_ligament(p, v); });
   visit_table("material", s, [](auto& p, auto&& v) { visit_material(p, v); });
-  visit_table("static", s.newton, [](auto& p, auto&& v) { visit_static(p, v); });
+  visit_table("static", s.newton, [](auto& p, auto&& v) { visit_newton_iteration(p, v); });
   visit_table("interactive", s.interactive, [](auto& p, auto&& v) { visit_interactive(p, v); });
   visit_table("contact", s.contact, [](auto& p, auto&& v) { visit_flexion_contact(p, v); });
   visit_table("loads", s.free.loads, [](auto& p, auto&& v) { visit_loads(p, v); });

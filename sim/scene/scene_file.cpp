@@ -1,3 +1,4 @@
+#include "common/config_section.hpp"
 #include "common/error.hpp"
 #include "common/toml_overrides.hpp"
 #include "common/toml_table.hpp"
@@ -5,6 +6,7 @@
 #include "sim/mesh/structured_mesh.hpp"
 #include "sim/scene/contact_table.hpp"
 #include "sim/scene/scene.hpp"
+#include "sim/scene/scene_fields.hpp"
 #include "sim/scene/vtu_mesh.hpp"
 
 #include <fmt/format.h>
@@ -64,12 +66,19 @@ MeshData read_mesh(TomlTable& table, const fs::path& base)
   return data;
 }
 
+/// Reads the settings of `visit_fields` from `table` over `settings`; the caller then reads its
+/// own keys and rejects unknown ones.
+template <class P, class VisitFields>
+void read_listed(TomlTable& table, P& settings, VisitFields visit_fields)
+{
+  ConfigSection section(table);
+  visit_fields(settings, FieldReader{section});
+}
+
 MaterialParameters read_material(TomlTable& table)
 {
   MaterialParameters material;
-  material.mu_mpa = table.number("mu_mpa", material.mu_mpa);
-  material.bulk_modulus_mpa = table.number("k_mpa", material.bulk_modulus_mpa);
-  material.volumetric = parse_volumetric_law(table.text("volumetric", "jm1"), table.where());
+  read_listed(table, material, [](auto& m, auto&& v) { visit_ground_substance(m, v); });
   table.reject_unknown_keys();
   return material;
 }
@@ -78,11 +87,7 @@ MaterialParameters read_material(TomlTable& table)
 FiberField read_fibers(TomlTable& table, const MeshData& mesh, MaterialParameters& material)
 {
   FiberParameters fiber;
-  fiber.c3_mpa = table.number("c3_mpa", fiber.c3_mpa);
-  fiber.c4 = table.number("c4", fiber.c4);
-  fiber.c5_mpa = table.number("c5_mpa", fiber.c5_mpa);
-  fiber.lambda_star = table.number("lambda_star", fiber.lambda_star);
-  fiber.convention = parse_fiber_convention(table.text("convention", "paper"), table.where());
+  read_listed(table, fiber, [](auto& f, auto&& v) { visit_fiber_law(f, v); });
   material.fiber = fiber;
 
   FiberField field;
@@ -255,28 +260,10 @@ void read_conditions(TomlTable& root, Scene& scene)
 
 void read_solver(TomlTable& table, Scene& scene)
 {
-  const std::string kind = table.text("kind", "static");
-  if (kind == "static")
-    scene.kind = SceneKind::quasi_static;
-  else if (kind == "dynamic")
-    scene.kind = SceneKind::dynamic;
-  else
-    table.fail_at("kind", "expected \"static\" or \"dynamic\", got \"" + kind + "\"");
+  read_listed(table, scene, [](auto& sc, auto&& v) { visit_scene_solver(sc, v); });
   NewtonSettings& newton = scene.newton;
-  newton.load_steps = table.integer("load_steps", newton.load_steps);
-  newton.max_iterations = table.integer("max_iterations", newton.max_iterations);
-  newton.residual_tolerance = table.number("residual_tolerance", newton.residual_tolerance);
-  newton.energy_tolerance = table.number("energy_tolerance", newton.energy_tolerance);
-  newton.max_cutbacks = table.integer("max_cutbacks", newton.max_cutbacks);
-  newton.max_substeps = table.integer("max_substeps", newton.max_substeps);
-  newton.verbose = table.boolean("verbose", false);
-  const LinearSolverKind linear_default =
-      scene.kind == SceneKind::dynamic ? LinearSolverKind::pcg : LinearSolverKind::direct;
-  newton.linear_solver =
-      parse_linear_solver(table.text("linear", to_string(linear_default)), table.where());
-  newton.pcg.tolerance = table.number("pcg_tolerance", newton.pcg.tolerance);
-  newton.pcg.max_iterations = table.integer("pcg_max_iterations", newton.pcg.max_iterations);
-  newton.projection = parse_psd_projection(table.text("psd_projection", "auto"), table.where());
+  if (!table.has("linear_solver") && scene.kind == SceneKind::dynamic)
+    newton.linear_solver = LinearSolverKind::pcg;
   scene.dynamics.linear_solver = newton.linear_solver;
   scene.dynamics.pcg = newton.pcg;
   scene.dynamics.projection = newton.projection;
@@ -293,16 +280,7 @@ void read_solver(TomlTable& table, Scene& scene)
 
 void read_dynamics(TomlTable& table, DynamicsSettings& dynamics)
 {
-  dynamics.time_step_s = table.number("time_step_s", dynamics.time_step_s);
-  dynamics.frames = table.integer("frames", dynamics.frames);
-  dynamics.until_converged = table.boolean("until_converged", dynamics.until_converged);
-  dynamics.convergence_tolerance =
-      table.number("convergence_tolerance", dynamics.convergence_tolerance);
-  dynamics.ramp_frames = table.integer("ramp_frames", dynamics.ramp_frames);
-  dynamics.density_kg_m3 = table.number("density_kg_m3", dynamics.density_kg_m3);
-  dynamics.mass_damping_per_s = table.number("mass_damping_per_s", dynamics.mass_damping_per_s);
-  dynamics.stiffness_damping_s = table.number("stiffness_damping_s", dynamics.stiffness_damping_s);
-  dynamics.max_halvings = table.integer("max_halvings", dynamics.max_halvings);
+  read_listed(table, dynamics, [](auto& d, auto&& v) { visit_scene_dynamics(d, v); });
   table.reject_unknown_keys();
 }
 
@@ -310,6 +288,7 @@ void read_dynamics(TomlTable& table, DynamicsSettings& dynamics)
 void read_contact(TomlTable& table, const fs::path& base, Scene& scene)
 {
   read_contact_table(table, scene.contact);
+  scene.contact.enabled = scene.contact.enabled.value_or(true); // a scene's [contact] has bones
   for (TomlTable& bone_table : table.tables("bone")) {
     SceneBone bone;
     bone.name = bone_table.required_text("name");
@@ -372,8 +351,7 @@ Scene read_document(const toml::table& document, const fs::path& base, const std
     read_dynamics(*dynamics, scene.dynamics);
   }
   if (auto output = root.table("output")) {
-    scene.output.every = output->integer("every", 1);
-    scene.output.vtu = output->boolean("vtu", true);
+    read_listed(*output, scene.output, [](auto& o, auto&& v) { visit_scene_output(o, v); });
     output->reject_unknown_keys();
     if (scene.output.every < 1)
       fail("{} output: every must be at least 1", name);
