@@ -5,6 +5,7 @@
 /// is read with `read_fields`, so that the list is the one place that names a key.
 
 #include "common/config_choice.hpp"
+#include "common/config_field_kinds.hpp"
 #include "common/error.hpp"
 #include "common/toml_table.hpp"
 
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -81,6 +83,26 @@ public:
     choice.value = *value;
   }
 
+  /// A parameter the config must give: "missing" at the table where it lacks it.
+  template <class T> void read(const std::string& key, Required<T> required)
+  {
+    if (!has(key))
+      fail_at(key, "missing");
+    read(key, required.value);
+  }
+
+  /// An angle given in degrees, held in radians.
+  template <class D> void read(const std::string& key, Degrees<D> angle)
+  {
+    if (!has(key)) {
+      allow(key);
+      return;
+    }
+    double degrees = 0.0;
+    read(key, degrees);
+    angle.radians = Degrees<D>::to_radians(degrees);
+  }
+
   /// A label: a number or a name, kept as text (as on the command line).
   void read_label(const std::string& key, std::string& target)
   {
@@ -139,6 +161,22 @@ struct FieldReader {
   {
     section.read(key, std::move(choice));
   }
+  template <class T> void operator()(const char* key, Required<T> required)
+  {
+    section.read(key, required);
+  }
+  template <class D> void operator()(const char* key, Degrees<D> angle)
+  {
+    section.read(key, angle);
+  }
+};
+
+/// Lists the keys a parameter list names, in its order: `visit_fields(parameters,
+/// FieldNames{keys})`.
+struct FieldNames {
+  std::vector<std::string_view>& keys;
+
+  template <class T> void operator()(const char* key, const T&) { keys.emplace_back(key); }
 };
 
 /// Reads the table `name` of `parent` (absent: nothing) with `visit_fields`; rejects keys it does

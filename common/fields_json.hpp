@@ -4,6 +4,7 @@
 /// FieldJsonWriter{json})`.
 
 #include "common/config_choice.hpp"
+#include "common/config_field_kinds.hpp"
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -30,6 +31,16 @@ struct FieldJsonWriter {
   template <class E> void operator()(const char* key, Choice<E> choice)
   {
     json[key] = choice.name(choice.value);
+  }
+
+  template <class T> void operator()(const char* key, Required<T> required)
+  {
+    (*this)(key, required.value);
+  }
+
+  template <class D> void operator()(const char* key, Degrees<D> angle)
+  {
+    json[key] = Degrees<D>::to_degrees(angle.radians);
   }
 };
 

@@ -275,7 +275,7 @@ std::vector<std::string> TomlTable::keys() const
   return names;
 }
 
-void TomlTable::only(std::initializer_list<std::string_view> allowed) const
+void TomlTable::only(const std::vector<std::string_view>& allowed) const
 {
   for (const auto& [key, value] : *m_table)
     if (std::find(allowed.begin(), allowed.end(), key.str()) == allowed.end())

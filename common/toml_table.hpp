@@ -8,7 +8,6 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
-#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string>
@@ -65,7 +64,7 @@ public:
   void reject_unknown_keys() const;
   /// Throws InputError for the first key outside `allowed`, before any value is read: a
   /// mistyped required key is then named as the typo it is, not as a missing key.
-  void only(std::initializer_list<std::string_view> allowed) const;
+  void only(const std::vector<std::string_view>& allowed) const;
 
   /// InputError "FILE:LINE: [table] key: problem" (the key's line where it is in the file).
   [[noreturn]] void fail_at(const std::string& key, const std::string& problem) const;

@@ -13,13 +13,13 @@
 #include "pipeline/reports/flexion_config_json.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "sim/flexion/error_estimate.hpp"
-#include "sim/material/material_fields.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/free_flexion.hpp"
 #include "sim/flexion/knee_flexion.hpp"
 #include "sim/flexion/knee_sweep.hpp"
 #include "sim/flexion/ligament_pairs.hpp"
 #include "sim/flexion/plausibility.hpp"
+#include "sim/material/material_fields.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

@@ -10,6 +10,7 @@
 #include "common/vtk_files.hpp"
 #include "pipeline/render/membrane_frame.hpp"
 #include "pipeline/render/tear_frame_picture.hpp"
+#include "pipeline/reports/tear_config_json.hpp"
 #include "sim/membrane/output/tear_path.hpp"
 #include "sim/membrane/scene/scene.hpp"
 #include "sim/membrane/scene/tear_metrics.hpp"
@@ -124,15 +125,7 @@ void run_tear(const TearOptions& options)
     summary.inputs()["set"] = options.set;
   nlohmann::json& parameters = summary.parameters();
   parameters["name"] = scene.name;
-  parameters["max_steps"] = scene.run.max_steps;
-  parameters["frame_every"] = scene.run.frame_every;
-  parameters["time_step_s"] = scene.solver.time_step_s;
-  parameters["fiber_threshold_mpa"] = scene.tearing.thresholds.fiber_mpa;
-  parameters["transverse_threshold_mpa"] = scene.tearing.thresholds.transverse_mpa;
-  parameters["steepness_alpha"] = scene.tearing.thresholds.steepness;
-  parameters["max_turn_deg"] = scene.tearing.thresholds.max_turn_rad * 180.0 / M_PI;
-  parameters["split_faces"] = scene.tearing.propagation.split_faces;
-  parameters["min_angle_deg"] = scene.tearing.propagation.min_angle_rad * 180.0 / M_PI;
+  parameters["config"] = reports::to_json(scene);
   parameters["png"] = !options.no_png;
 
   StageMeter setup_meter;

@@ -10,6 +10,7 @@
 #include "pipeline/commands/commands.hpp"
 #include "pipeline/reports/flexion_config_json.hpp"
 #include "pipeline/reports/scene_config_json.hpp"
+#include "pipeline/reports/tear_config_json.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/membrane/scene/scene.hpp"
@@ -332,7 +333,7 @@ radius_mm = 0.5
 force_rate_n_per_s = 0.002
 max_force_n = 0.01
 )" + tear_common},
-                  {"sim/membrane/scene/scene_file.cpp"},
+                  {"sim/membrane/scene/scene_file.cpp", "sim/membrane/scene/scene_fields.hpp"},
                   [](const std::string& text, const fs::path& folder) {
                     write_text(folder / "tear.toml", text);
                     ligsim::membrane::load_scene(folder / "tear.toml");
@@ -546,6 +547,10 @@ nlohmann::json parameters_of(const std::string& reader, const std::string& text)
     return ligsim::pipeline::to_json(
         ligsim::pipeline::load_build_config(scratch_folder() / "defaults.toml"));
   }
+  if (reader == "tear") {
+    write_text(scratch_folder() / "tear.toml", text);
+    return ligsim::reports::to_json(ligsim::membrane::load_scene(scratch_folder() / "tear.toml"));
+  }
   if (reader == "scene")
     return ligsim::reports::to_json(ligsim::sim::parse_scene(text, scratch_folder(), "scene.toml"));
   ligsim::sim::FlexionSettings settings;
@@ -602,13 +607,14 @@ TEST_P(ConfigKeyDefaults, TheGuidesDefaultsAreTheReadersOwn)
                .dump();
     ++checked;
   }
-  EXPECT_GE(checked, reader == "build"     ? 40
-                     : reader == "flexion" ? 35
-                                           : 30)
+  const std::map<std::string, int> least = {
+      {"build", 40}, {"flexion", 35}, {"scene", 30}, {"tear", 15}};
+  EXPECT_GE(checked, least.at(reader))
       << "too few literal defaults found: is the table still parsed?";
 }
 
-INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeyDefaults, ::testing::Values("build", "flexion", "scene"),
+INSTANTIATE_TEST_SUITE_P(Docs, ConfigKeyDefaults,
+                         ::testing::Values("build", "flexion", "scene", "tear"),
                          [](const auto& info) { return info.param; });
 
 /// The keys the help of `ligsim <job>`'s flags names ("(--set tetmesh.cell_size_mm)"), by flag.

@@ -9,10 +9,10 @@
 namespace ligsim::membrane {
 
 struct TearThresholds {
-  double fiber_mpa = 0.0;      ///< bar sigma_F: stress along the fibers that breaks them
-  double transverse_mpa = 0.0; ///< bar sigma_T: stress across the fibers that separates them
-  double steepness = 1.0;      ///< alpha in eq. 6
-  double max_turn_rad = 0.0;   ///< theta_P in eq. 4: largest turn from the previous direction
+  double fiber_mpa = 0.0;           ///< bar sigma_F: stress along the fibers that breaks them
+  double transverse_mpa = 0.0;      ///< bar sigma_T: stress across the fibers that separates them
+  double steepness = 1.0;           ///< alpha in eq. 6
+  double max_turn_rad = M_PI / 2.0; ///< theta_P in eq. 4: largest turn from the previous direction
 };
 
 /// Eq. 5: the normal stress along the unit direction u (the angle theta_u of u from x enters

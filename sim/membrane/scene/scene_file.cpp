@@ -1,7 +1,9 @@
+#include "common/config_section.hpp"
 #include "common/error.hpp"
 #include "common/toml_overrides.hpp"
 #include "common/toml_table.hpp"
 #include "sim/membrane/scene/scene.hpp"
+#include "sim/membrane/scene/scene_fields.hpp"
 
 #include <toml++/toml.h>
 
@@ -72,6 +74,18 @@ Region read_region(TomlTable& table)
   return region;
 }
 
+/// Reads a settings table of `visit_fields` over `settings`, after refusing keys that neither the
+/// list nor `by_hand` names (so that a mistyped required key is named as the typo it is).
+template <class P, class VisitFields>
+void read_settings(TomlTable& table, P& settings, VisitFields visit_fields,
+                   std::vector<std::string_view> by_hand = {})
+{
+  visit_fields(settings, FieldNames{by_hand});
+  table.only(by_hand);
+  ConfigSection section(table);
+  visit_fields(settings, FieldReader{section});
+}
+
 std::vector<double> read_angles(const std::filesystem::path& file, const std::string& where)
 {
   std::ifstream in(file);
@@ -135,14 +149,7 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   scene.mesh.seed = static_cast<std::uint64_t>(mesh.integer("seed", 1));
 
   TomlTable material = top.required_table("material");
-  material.only({"fiber_modulus_mpa", "transverse_modulus_mpa", "fiber_poisson",
-                 "shear_modulus_mpa", "thickness_mm", "density_t_per_mm3"});
-  scene.material.fiber_modulus_mpa = material.required_number("fiber_modulus_mpa");
-  scene.material.transverse_modulus_mpa = material.required_number("transverse_modulus_mpa");
-  scene.material.fiber_poisson = material.required_number("fiber_poisson");
-  scene.material.shear_modulus_mpa = material.required_number("shear_modulus_mpa");
-  scene.material.thickness_mm = material.required_number("thickness_mm");
-  scene.material.density_t_per_mm3 = material.required_number("density_t_per_mm3");
+  read_settings(material, scene.material, [](auto& m, auto&& v) { visit_membrane_material(m, v); });
   validate(scene.material, material.where());
 
   TomlTable fibers = top.required_table("fibers");
@@ -166,40 +173,17 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   }
 
   TomlTable tearing = top.required_table("tearing");
-  tearing.only({"fiber_threshold_mpa", "transverse_threshold_mpa", "steepness_alpha",
-                "max_turn_deg", "split_faces", "min_angle_deg", "min_area_mm2", "initiation",
-                "initiation_clearance_mm", "max_events_per_step"});
-  TearSettings& tear = scene.tearing;
-  tear.thresholds.fiber_mpa = tearing.required_number("fiber_threshold_mpa");
-  tear.thresholds.transverse_mpa = tearing.required_number("transverse_threshold_mpa");
-  tear.thresholds.steepness = tearing.number("steepness_alpha", 1.0);
-  tear.thresholds.max_turn_rad = tearing.number("max_turn_deg", 90.0) * kDegree;
-  tear.propagation.split_faces = tearing.boolean("split_faces", true);
-  tear.propagation.min_angle_rad = tearing.number("min_angle_deg", 10.0) * kDegree;
-  tear.propagation.min_area_mm2 = tearing.number("min_area_mm2", 1e-6);
-  tear.initiation = tearing.boolean("initiation", true);
-  tear.initiation_clearance_mm = tearing.number("initiation_clearance_mm", 0.0);
-  tear.max_events_per_step = tearing.integer("max_events_per_step", 2);
-  validate(tear, tearing.where().c_str());
+  read_settings(tearing, scene.tearing, [](auto& t, auto&& v) { visit_tearing(t, v); });
+  validate(scene.tearing, tearing.where().c_str());
 
   TomlTable solver = top.required_table("solver");
-  solver.only({"time_step_s", "mass_damping_per_s", "stiffness_damping_s", "cg_tolerance",
-               "cg_max_iterations"});
-  scene.solver.time_step_s = solver.required_number("time_step_s");
-  scene.solver.mass_damping_per_s = solver.number("mass_damping_per_s", 0.0);
-  scene.solver.stiffness_damping_s = solver.number("stiffness_damping_s", 0.0);
-  scene.solver.cg_tolerance = solver.number("cg_tolerance", 1e-6);
-  scene.solver.cg_max_iterations = solver.integer("cg_max_iterations", 200);
+  read_settings(solver, scene.solver, [](auto& s, auto&& v) { visit_membrane_solver(s, v); });
   validate(scene.solver, solver.where().c_str());
 
   TomlTable run = top.required_table("run");
-  run.only({"max_steps", "frame_every", "stop_when_separated", "stop_after_turn_deg", "centre_mm"});
-  scene.run.max_steps = run.integer("max_steps", 1000);
-  scene.run.frame_every = run.integer("frame_every", 10);
+  read_settings(run, scene.run, [](auto& r, auto&& v) { visit_run(r, v); }, {"centre_mm"});
   if (scene.run.max_steps < 1 || scene.run.frame_every < 1)
     fail("{}: max_steps and frame_every must be at least 1", run.where());
-  scene.run.stop_when_separated = run.boolean("stop_when_separated", true);
-  scene.run.stop_after_turn_rad = run.number("stop_after_turn_deg", 0.0) * kDegree;
   if (run.has("centre_mm"))
     scene.run.centre_mm = point(run, "centre_mm", Vec2::Zero());
 

@@ -106,7 +106,7 @@ TEST(TearCommand, SetChangesASceneKeyAndNamesItsMistakes)
   const LigsimRun run = tear(scene("square-sheet-90"), out, "--set run.max_steps=5 --no-png");
   ASSERT_EQ(run.status, 0) << run.output;
   const nlohmann::json summary = read_summary(out);
-  EXPECT_EQ(summary["parameters"]["max_steps"].get<int>(), 5);
+  EXPECT_EQ(summary["parameters"]["config"]["run"]["max_steps"].get<int>(), 5);
   EXPECT_EQ(summary["inputs"]["set"][0].get<std::string>(), "run.max_steps=5");
   const fs::path bad = fresh_out("_set_bad");
   const LigsimRun misspelt = tear(scene("square-sheet-90"), bad, "--set run.max_step=5", false);
