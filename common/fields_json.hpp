@@ -1,15 +1,17 @@
 #pragma once
 /// @brief A config's parameters as JSON (summary.json's parameters), written by walking the same
 /// parameter list (visit_* functions) its reader walks: `visit_fields(parameters,
-/// FieldJsonWriter{json})`.
+/// FieldJsonWriter{json})`; and read back from such JSON the same way (FieldJsonReader).
 
 #include "common/config_choice.hpp"
 #include "common/config_field_kinds.hpp"
+#include "common/error.hpp"
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <optional>
+#include <string>
 
 namespace ligsim {
 
@@ -41,6 +43,44 @@ struct FieldJsonWriter {
   template <class D> void operator()(const char* key, Degrees<D> angle)
   {
     json[key] = Degrees<D>::to_degrees(angle.radians);
+  }
+};
+
+/// The writer's inverse: reads each visited parameter from `json`, which must have every key
+/// (a file ligsim wrote); `where` names the file in errors.
+struct FieldJsonReader {
+  const nlohmann::json& json;
+  const std::string& where;
+
+  template <class T> void operator()(const char* key, T& value)
+  {
+    try {
+      value = json.at(key).get<T>();
+    } catch (const nlohmann::json::exception& e) {
+      fail("{}: '{}': {}", where, key, e.what());
+    }
+  }
+
+  template <class T> void operator()(const char* key, Required<T> required)
+  {
+    (*this)(key, required.value);
+  }
+
+  template <class D> void operator()(const char* key, Degrees<D> angle)
+  {
+    double degrees = 0.0;
+    (*this)(key, degrees);
+    angle.radians = Degrees<D>::to_radians(degrees);
+  }
+
+  template <class E> void operator()(const char* key, Choice<E> choice)
+  {
+    std::string text;
+    (*this)(key, text);
+    const auto value = choice.parse(text);
+    if (!value)
+      fail("{}: '{}': expected {}, got \"{}\"", where, key, choice.expected(), text);
+    choice.value = *value;
   }
 };
 

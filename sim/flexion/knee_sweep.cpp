@@ -1,9 +1,11 @@
 #include "sim/flexion/knee_sweep.hpp"
 
 #include "common/error.hpp"
+#include "common/fields_json.hpp"
 #include "common/progress.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/knee_contact.hpp"
+#include "sim/material/material_fields.hpp"
 
 #include <fmt/format.h>
 
@@ -16,23 +18,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A flexion config's [material] keys from knee.json.
+/// A flexion config's [material] keys from knee.json, which the build wrote from the same list.
 MaterialParameters material_from(const nlohmann::json& json, const std::string& where)
 {
   MaterialParameters material = mcl_material();
-  FiberParameters& fiber = *material.fiber;
-  try {
-    material.mu_mpa = json.at("mu_mpa").get<double>();
-    material.bulk_modulus_mpa = json.at("k_mpa").get<double>();
-    material.volumetric = parse_volumetric_law(json.at("volumetric").get<std::string>(), where);
-    fiber.c3_mpa = json.at("c3_mpa").get<double>();
-    fiber.c4 = json.at("c4").get<double>();
-    fiber.c5_mpa = json.at("c5_mpa").get<double>();
-    fiber.lambda_star = json.at("lambda_star").get<double>();
-    fiber.convention = parse_fiber_convention(json.at("convention").get<std::string>(), where);
-  } catch (const nlohmann::json::exception& e) {
-    fail("{}: material: {}", where, e.what());
-  }
+  visit_weiss_material(material, FieldJsonReader{json, where + ": material"});
   validate(material);
   return material;
 }

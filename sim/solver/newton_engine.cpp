@@ -1,6 +1,5 @@
 #include "sim/solver/newton_engine.hpp"
 
-#include "common/error.hpp"
 #include "common/progress.hpp"
 
 #include <fmt/format.h>
@@ -24,17 +23,6 @@ constexpr int max_residual_search_steps = 3;
 constexpr int shifted_iteration_factor = 10;
 
 } // namespace
-
-PsdProjection parse_psd_projection(const std::string& text, const std::string& where)
-{
-  if (text == "auto")
-    return PsdProjection::automatic;
-  if (text == "always")
-    return PsdProjection::always;
-  if (text == "never")
-    return PsdProjection::never;
-  fail("{}: psd_projection must be \"auto\", \"always\" or \"never\", got \"{}\"", where, text);
-}
 
 std::string to_string(PsdProjection projection)
 {

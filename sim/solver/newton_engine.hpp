@@ -32,7 +32,6 @@ enum class PsdProjection {
   never, ///< an indefinite matrix fails the step (and triggers a cut-back)
 };
 
-PsdProjection parse_psd_projection(const std::string& text, const std::string& where);
 std::string to_string(PsdProjection projection);
 
 /// What Newton iterations cost and met; the solvers' step and frame reports carry it.
