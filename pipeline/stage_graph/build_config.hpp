@@ -2,6 +2,7 @@
 /// @brief Every parameter of `ligsim build`, from a TOML config file and command-line flags.
 
 #include "common/knee_anatomy.hpp"
+#include "sim/material/material_parameters.hpp"
 #include "stages/attachments/attachments.hpp"
 #include "stages/centerline/centerline.hpp"
 #include "stages/fibers/fibers.hpp"
@@ -21,19 +22,6 @@
 #include <vector>
 
 namespace ligsim::pipeline {
-
-/// Material written into the model's scene: Weiss 1996 parameters of the MCL (paper
-/// section 4.2), units MPa.
-struct MaterialDefaults {
-  double mu_mpa = 27.7;
-  double c3_mpa = 2.07;
-  double c4 = 61.44;
-  double c5_mpa = 640.7;
-  double lambda_star = 1.03;
-  double bulk_modulus_mpa = 1000.0;
-  std::string fiber_convention = "paper"; ///< "paper" (eq. 14 gives dF/dlambda) or "weiss"
-  std::string volumetric = "jm1";         ///< "jm1": K/2 (J-1)^2 (paper eq. 22), or "lnj"
-};
 
 /// The knee flexion the model's scene prescribes: the femur nodes rotate about a flexion axis
 /// while the tibia nodes stay fixed.
@@ -103,7 +91,9 @@ struct BuildConfig {
   tetmesh::Parameters tetmesh;
   fibers::Parameters fibers;
   model::Parameters model;
-  MaterialDefaults material;
+  /// The Weiss material written into the model's scene; the MCL of the paper's section 4.2
+  /// unless the config or the ligament's name gives another.
+  sim::MaterialParameters material = sim::mcl_material();
   FlexionDefaults flexion;
   ErrorEstimateParameters error_estimate;
   /// The ligament's part, when its name (its label's, in a label map) is one that

@@ -2,6 +2,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
+#include "common/fields_json.hpp"
 #include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
@@ -9,6 +10,7 @@
 #include "pipeline/stage_graph/companion_build.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
+#include "sim/material/material_fields.hpp"
 #include "stages/io/vtk_convert.hpp"
 
 #include <fmt/format.h>
@@ -20,17 +22,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The material as a flexion config's [material] keys.
-nlohmann::json material_json(const MaterialDefaults& m)
+/// The material as a flexion config's [material] keys (knee.json's, which flexion reads back
+/// through the same list).
+nlohmann::json material_json(const sim::MaterialParameters& m)
 {
-  return {{"mu_mpa", m.mu_mpa},
-          {"k_mpa", m.bulk_modulus_mpa},
-          {"volumetric", m.volumetric},
-          {"c3_mpa", m.c3_mpa},
-          {"c4", m.c4},
-          {"c5_mpa", m.c5_mpa},
-          {"lambda_star", m.lambda_star},
-          {"convention", m.fiber_convention}};
+  nlohmann::json json = nlohmann::json::object();
+  sim::visit_weiss_material(m, FieldJsonWriter{json});
+  return json;
 }
 
 /// The knee's bones in its folder, repaired as a ligament's model stage repairs them.

@@ -13,18 +13,14 @@ namespace {
 /// Weiss' law in FEBio's transversely isotropic Mooney-Rivlin form (C1 = mu / 2; the fiber
 /// expressions give lambda dF/dlambda; K/2 (ln J)^2), as the Open Knee(s) models and Pena et al.
 /// (J Biomech 2006;39:1686) give it.
-MaterialDefaults febio_form(double c1_mpa, double c3_mpa, double c4, double c5_mpa,
-                            double lambda_star, double bulk_mpa)
+sim::MaterialParameters febio_form(double c1_mpa, double c3_mpa, double c4, double c5_mpa,
+                                   double lambda_star, double bulk_mpa)
 {
-  MaterialDefaults m;
+  sim::MaterialParameters m;
   m.mu_mpa = 2.0 * c1_mpa;
-  m.c3_mpa = c3_mpa;
-  m.c4 = c4;
-  m.c5_mpa = c5_mpa;
-  m.lambda_star = lambda_star;
   m.bulk_modulus_mpa = bulk_mpa;
-  m.fiber_convention = "weiss";
-  m.volumetric = "lnj";
+  m.volumetric = sim::VolumetricLaw::lnj;
+  m.fiber = sim::FiberParameters{c3_mpa, c4, c5_mpa, lambda_star, sim::FiberConvention::weiss};
   return m;
 }
 
@@ -79,7 +75,7 @@ std::optional<LigamentDefaults> ligament_defaults(const std::string& name)
   // Gardiner & Weiss' human MCL (J Orthop Res 2003;21:1098). Its ground substance, mu = 2 C1 =
   // 2.88 MPa, gives a transverse tensile modulus 3 mu = 8.6 MPa, inside the 11.0 +- 3.6 MPa that
   // Quapp & Weiss measured across human MCL fibers; the ligament paper's mu = 27.7 MPa gives 83.
-  const MaterialDefaults human_mcl = febio_form(1.44, 0.57, 48.0, 467.1, 1.063, 793.65);
+  const sim::MaterialParameters human_mcl = febio_form(1.44, 0.57, 48.0, 467.1, 1.063, 793.65);
   LigamentDefaults d;
   if (key == "MCL") {
     d.material = human_mcl;

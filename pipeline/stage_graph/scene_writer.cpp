@@ -1,15 +1,33 @@
 #include "pipeline/stage_graph/scene_writer.hpp"
 
 #include "common/atomic_file.hpp"
+#include "sim/material/material_fields.hpp"
 
 #include <fmt/format.h>
 
 namespace ligsim::pipeline {
 
+namespace {
+
+/// One `key = value` line per visited parameter: a scene's table from its key list.
+struct TomlLines {
+  std::string& text;
+
+  void operator()(const char* key, double value) { text += fmt::format("{} = {}\n", key, value); }
+  template <class E> void operator()(const char* key, Choice<E> choice)
+  {
+    text += fmt::format("{} = \"{}\"\n", key, choice.name(choice.value));
+  }
+};
+
+} // namespace
+
 void write_scene(const std::filesystem::path& file, const BuildConfig& config,
                  const model::Axis& axis, const std::vector<std::string>& bones)
 {
-  const MaterialDefaults& m = config.material;
+  std::string material, fibers;
+  sim::visit_ground_substance(config.material, TomlLines{material});
+  sim::visit_fiber_law(*config.material.fiber, TomlLines{fibers});
   std::string bone_note = bones.empty() ? "none given" : "";
   for (std::size_t i = 0; i < bones.size(); ++i)
     bone_note += fmt::format("{}{}", i ? ", " : "", bones[i]);
@@ -19,10 +37,9 @@ void write_scene(const std::filesystem::path& file, const BuildConfig& config,
       "# Bone surfaces beside this file, for pictures: {}.\n"
       "title = \"ligament model: tibia fixed, femur flexed {} degrees\"\n\n"
       "[mesh]\nfile = \"model.vtu\"\n\n"
-      "[material]\nmu_mpa = {}\nk_mpa = {}\nvolumetric = \"{}\"\n\n"
+      "[material]\n{}\n"
       "# The cell array 'fiber' already carries the in-situ strain ({}) in its length.\n"
-      "[fibers]\ncell_data = \"fiber\"\nc3_mpa = {}\nc4 = {}\nc5_mpa = {}\nlambda_star = {}\n"
-      "convention = \"{}\"\n\n"
+      "[fibers]\ncell_data = \"fiber\"\n{}\n"
       "[node_sets]\ntibia = {{ point_data = \"tibia_attached\" }}\n"
       "femur = {{ point_data = \"femur_attached\" }}\n\n"
       "[[fix]]\nset = \"tibia\"\n\n"
@@ -30,9 +47,8 @@ void write_scene(const std::filesystem::path& file, const BuildConfig& config,
       "[[rigid]]\nset = \"femur\"\naxis = [{}, {}, {}]\npoint_mm = [{}, {}, {}]\nangle_deg = {}\n\n"
       "[solver]\nkind = \"static\"\nload_steps = {}\n\n"
       "[output]\nevery = 1\n",
-      file.filename().string(), bone_note, config.flexion.max_angle_deg, m.mu_mpa,
-      m.bulk_modulus_mpa, m.volumetric, config.model.in_situ_strain, m.c3_mpa, m.c4, m.c5_mpa,
-      m.lambda_star, m.fiber_convention,
+      file.filename().string(), bone_note, config.flexion.max_angle_deg, material,
+      config.model.in_situ_strain, fibers,
       config.flexion.axis_given ? "given in the build config"
                                 : "through the femoral attachment along the ligament's thinnest "
                                   "principal direction",

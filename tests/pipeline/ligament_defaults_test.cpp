@@ -8,22 +8,6 @@
 namespace ligsim::pipeline {
 namespace {
 
-sim::MaterialParameters parameters(const MaterialDefaults& m)
-{
-  sim::MaterialParameters p;
-  p.mu_mpa = m.mu_mpa;
-  p.bulk_modulus_mpa = m.bulk_modulus_mpa;
-  p.volumetric = sim::parse_volumetric_law(m.volumetric, "test");
-  sim::FiberParameters fiber;
-  fiber.c3_mpa = m.c3_mpa;
-  fiber.c4 = m.c4;
-  fiber.c5_mpa = m.c5_mpa;
-  fiber.lambda_star = m.lambda_star;
-  fiber.convention = sim::parse_fiber_convention(m.fiber_convention, "test");
-  p.fiber = fiber;
-  return p;
-}
-
 /// Energy density of a unit cube stretched by `along` across its fibers (x; fibers along z, no
 /// in-situ strain, as in an excised specimen), its other two sides free: minimised over their
 /// common stretch (the fibers are shortened, so the material is isotropic there) by golden section.
@@ -61,7 +45,7 @@ TEST(LigamentDefaults, TheMclsTransverseModulusIsTheMeasuredHumanOne)
   // MCLs 11.0 +- 3.6 MPa. At 0.1 % strain W = E e^2 / 2.
   const auto mcl = ligament_defaults("MCL");
   ASSERT_TRUE(mcl.has_value());
-  const sim::WeissMaterial material(parameters(mcl->material));
+  const sim::WeissMaterial material(mcl->material);
   const double strain = 1e-3;
   const double modulus =
       2.0 * transverse_energy_density(material, 1.0 + strain) / (strain * strain);

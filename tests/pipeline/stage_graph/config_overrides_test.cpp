@@ -49,7 +49,7 @@ TEST(ConfigOverrides, SetKeysOverTheFileAndKeepTheRest)
   EXPECT_EQ(config.tetmesh.cell_size_mm, 1.2);
   EXPECT_EQ(config.tetmesh.facet_size_mm, 2.4);
   EXPECT_EQ(config.centerline.span, centerline::Span::attachments);
-  EXPECT_EQ(config.material.c4, 120.0);
+  EXPECT_EQ(config.material.fiber->c4, 120.0);
   EXPECT_EQ(config.surface, file.parent_path() / "mcl.stl");
   // A section set on the command line counts as given, as in the file.
   EXPECT_EQ(config.given.count("material"), 1u);
@@ -89,6 +89,9 @@ TEST(ConfigOverrides, MistakesNameTheAssignment)
               HasSubstr("--set tetmesh.cell_size_mm=fine"));
   EXPECT_THAT(build_error(file, {"tetmsh.order=2"}), HasSubstr("tetmsh"));
   EXPECT_THAT(build_error(file, {"tetmesh.order"}), HasSubstr("expected TABLE.KEY=VALUE"));
+  // The material's enumerated keys are checked where they are read, not when a scene runs.
+  EXPECT_THAT(build_error(file, {"material.fiber_convention=wiess"}),
+              HasSubstr("fiber_convention: expected \"paper\" or \"weiss\", got \"wiess\""));
   // Without a file, the messages about a table as a whole name the settings too.
   EXPECT_THAT(build_error({}, {"anatomy.side=up"}),
               HasSubstr("--set: [anatomy] side must be \"left\" or \"right\""));
