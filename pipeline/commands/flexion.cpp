@@ -10,7 +10,7 @@
 #include "pipeline/render/flexion_pictures.hpp"
 #include "pipeline/render/knee_pictures.hpp"
 #include "pipeline/render/offscreen_display.hpp"
-#include "pipeline/reports/flexion_config_json.hpp"
+#include "pipeline/reports/config_json.hpp"
 #include "pipeline/reports/knee_reports.hpp"
 #include "sim/flexion/error_estimate.hpp"
 #include "sim/flexion/flexion_output.hpp"

@@ -1,5 +1,5 @@
 #include "pipeline/commands/commands.hpp"
-#include "pipeline/reports/scene_config_json.hpp"
+#include "pipeline/reports/config_json.hpp"
 #include "pipeline/scenes/scene_runner.hpp"
 
 #include "common/error.hpp"

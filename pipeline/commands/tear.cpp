@@ -10,7 +10,7 @@
 #include "common/vtk_files.hpp"
 #include "pipeline/render/membrane_frame.hpp"
 #include "pipeline/render/tear_frame_picture.hpp"
-#include "pipeline/reports/tear_config_json.hpp"
+#include "pipeline/reports/config_json.hpp"
 #include "sim/membrane/output/tear_path.hpp"
 #include "sim/membrane/scene/scene.hpp"
 #include "sim/membrane/scene/tear_metrics.hpp"

@@ -8,9 +8,7 @@
 
 #include "common/error.hpp"
 #include "pipeline/commands/commands.hpp"
-#include "pipeline/reports/flexion_config_json.hpp"
-#include "pipeline/reports/scene_config_json.hpp"
-#include "pipeline/reports/tear_config_json.hpp"
+#include "pipeline/reports/config_json.hpp"
 #include "pipeline/stage_graph/build_config.hpp"
 #include "sim/flexion/flexion_config.hpp"
 #include "sim/membrane/scene/scene.hpp"
