@@ -4,8 +4,10 @@
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
+#include "pipeline/stage_graph/label_inputs.hpp"
 #include "stages/io/surface_reader.hpp"
 #include "stages/labelmap/label_names.hpp"
+#include "stages/labelmap/label_surface.hpp"
 #include "stages/labelmap/rasterize.hpp"
 #include "stages/repair/repair.hpp"
 
@@ -80,6 +82,37 @@ Part read_part(const std::string& text)
   return part;
 }
 
+/// Each part's 26-connected pieces in the map, as {"pieces", "largest_share"}; a part whose
+/// pieces other than the largest hold more than a ligament may drop is said on stderr, since
+/// `ligsim build` refuses a ligament in pieces (a part thinner than the voxels breaks between
+/// them).
+nlohmann::json pieces_per_label(const labelmap::LabelImage& image,
+                                const std::vector<labelmap::LabelName>& names,
+                                const std::vector<int>& labels, const Eigen::Vector3d& spacing)
+{
+  nlohmann::json pieces = nlohmann::json::object();
+  for (int label : labels) {
+    if (std::find(image.labels.begin(), image.labels.end(), label) == image.labels.end())
+      continue; // covered by later parts: voxels_per_label says 0
+    const labelmap::Selection s = labelmap::label_pieces(image, label);
+    const double kept = static_cast<double>(s.voxels - s.filled_hole_voxels);
+    const double share = kept / (kept + static_cast<double>(s.dropped_voxels));
+    pieces[std::to_string(label)] = {{"pieces", s.components}, {"largest_share", share}};
+    if (1.0 - share <= pipeline::ligament_stray_share)
+      continue;
+    std::string name;
+    for (const labelmap::LabelName& n : names)
+      if (n.value == label)
+        name = fmt::format(" '{}'", n.name);
+    log_info(fmt::format("warning: label {}{} is in {} pieces at {:.3g} x {:.3g} x {:.3g} mm, its "
+                         "largest {:.0f} % of its voxels: `ligsim build` refuses a ligament in "
+                         "pieces; a finer --spacing (thinner slices) keeps a thin part whole",
+                         label, name, s.components, spacing.x(), spacing.y(), spacing.z(),
+                         100.0 * share));
+  }
+  return pieces;
+}
+
 /// Where the colour table of a label map goes: beside it, same stem, .ctbl.
 fs::path colour_table_of(const fs::path& image)
 {
@@ -131,13 +164,18 @@ void run_labelmap(const LabelmapOptions& o)
   summary.results()["colour_table"] = names.empty() ? "" : table.string();
   summary.parameters() = {{"spacing_mm", o.spacing}, {"margin_mm", o.margin_mm}};
   nlohmann::json counts = nlohmann::json::object();
-  for (const auto& part : parts)
+  std::vector<int> labels;
+  for (const auto& part : parts) {
     counts[std::to_string(part.label)] =
         std::count(image.labels.begin(), image.labels.end(), part.label);
+    labels.push_back(part.label);
+  }
+  const Eigen::Vector3d spacing(o.spacing[0], o.spacing[1], o.spacing[2]);
   summary.add_stage("labelmap", meter,
                     {{"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
                      {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
                      {"voxels_per_label", counts},
+                     {"pieces_per_label", pieces_per_label(image, names, labels, spacing)},
                      {"repairs_per_label", repairs}});
   summary.write(out.parent_path().empty() ? fs::path(".") : out.parent_path());
   log_info(fmt::format("wrote {} ({} x {} x {} voxels)", out.string(), image.dims.x(),

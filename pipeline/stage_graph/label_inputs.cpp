@@ -61,17 +61,12 @@ nlohmann::json map_json(const fs::path& labels, const labelmap::LabelImage& imag
           {"colour_tables", table_names}};
 }
 
-/// The share of a ligament's voxels that may lie outside its largest piece and be dropped as
-/// stray voxels. More, and the ligament itself fell apart: a band thinner than the map's voxels
-/// breaks between them (the HRA male PCL at 1 mm slices keeps 52 % in its largest piece).
-constexpr double kLigamentStrayShare = 0.05;
-
 /// Refuses a ligament label that is in pieces: its model would be a part of the ligament.
 void check_ligament_in_one_piece(const labelmap::Selection& s, const labelmap::LabelImage& image)
 {
   const long kept = s.voxels - s.filled_hole_voxels;
   const long labelled = kept + s.dropped_voxels;
-  if (static_cast<double>(s.dropped_voxels) <= kLigamentStrayShare * static_cast<double>(labelled))
+  if (static_cast<double>(s.dropped_voxels) <= ligament_stray_share * static_cast<double>(labelled))
     return;
   const Eigen::Vector3d& h = image.spacing_mm;
   fail("label {} is in {} pieces (26-connected voxels): its largest holds {} of its {} voxels "
@@ -80,7 +75,7 @@ void check_ligament_in_one_piece(const labelmap::Selection& s, const labelmap::L
        "finer spacing (thinner slices), or join its pieces in the label",
        s.label, s.components, kept, labelled,
        100.0 * static_cast<double>(kept) / static_cast<double>(labelled),
-       100.0 * kLigamentStrayShare, h.x(), h.y(), h.z());
+       100.0 * ligament_stray_share, h.x(), h.y(), h.z());
 }
 
 /// A bone's label, or several joined by '+' ("femur+femoral_cartilage", "2+7+8"): the bone with

@@ -14,6 +14,11 @@
 
 namespace ligsim::pipeline {
 
+/// The share of a ligament's voxels that may lie outside its largest 26-connected piece, dropped
+/// as stray voxels. More, and the ligament fell apart (a band thinner than the map's voxels breaks
+/// between them): the build refuses it.
+inline constexpr double ligament_stray_share = 0.05;
+
 /// The ligament's surface from a label map, in the output folder (the bones' are femur.vtp and
 /// tibia.vtp, which the model stage then keeps as they are).
 inline constexpr const char* ligament_from_labels = "labels_ligament.vtp";

@@ -247,6 +247,13 @@ LabelImage cropped_to(const LabelImage& image, int label)
 
 } // namespace
 
+Selection label_pieces(const LabelImage& image, int label)
+{
+  Selection selection;
+  select_label(cropped_to(image, label), label, &selection);
+  return selection;
+}
+
 TriangleSurface label_surface(const LabelImage& whole, int label, Selection* selection,
                               int smoothing_iterations, bool never_crossing)
 {

@@ -27,6 +27,10 @@ struct Selection {
 /// component with the enclosed holes filled. Throws InputError if the label is absent.
 std::vector<std::uint8_t> select_label(const LabelImage& image, int label, Selection* selection);
 
+/// The 26-connected pieces of `label` within its own box (see select_label: `components`, the
+/// `dropped_voxels` outside the largest, the kept `voxels`). Throws InputError if it is absent.
+Selection label_pieces(const LabelImage& image, int label);
+
 /// The smooth closed surface of `label` (see select_label), physical LPS coordinates, mm,
 /// outward-facing triangles. `smoothing_iterations` of windowed-sinc smoothing (0: none), after
 /// which the surface is offset along its normals to enclose the selected voxels' volume.

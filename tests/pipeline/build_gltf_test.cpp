@@ -3,9 +3,11 @@
 
 #include "tests/pipeline/cli_runner.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
 
 using namespace ligsim::test;
@@ -142,4 +144,32 @@ TEST(LabelmapCli, AnOpenPartIsClosedBeforeItIsVoxelized)
   // same once its top is filled, not the leak a column through the hole would let in.
   EXPECT_GT(voxels[0], 1000);
   EXPECT_EQ(voxels[1], voxels[0]);
+}
+
+TEST(LabelmapCli, APartThinnerThanTheSlicesIsSaidToBeInPieces)
+{
+  // A plate 10 x 10 mm and 0.3 mm thick, turned 45 degrees about y: at 0.3 x 0.3 x 1 mm its
+  // columns hold a voxel centre now and then, in pieces, where the 10 mm cube is one piece.
+  const fs::path dir = fresh_folder("thin_part_labelmap");
+  fs::create_directories(dir);
+  std::string plate;
+  for (const double z : {-0.15, 0.15})
+    for (const auto& [x, y] : {std::pair{-5.0, -5.0}, {5.0, -5.0}, {5.0, 5.0}, {-5.0, 5.0}})
+      plate += fmt::format("v {} {} {}\n", (x + z) / std::sqrt(2.0), y, (z - x) / std::sqrt(2.0));
+  plate += "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+           "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\nf 5 6 7\nf 5 7 8\n";
+  std::ofstream(dir / "plate.obj") << plate;
+  std::ofstream(dir / "cube.obj") << cube_obj(false);
+  const CliResult result = run_ligsim("labelmap --part " + (dir / "plate.obj").string() +
+                                      ":1:plate --part " + (dir / "cube.obj").string() +
+                                      ":2 --margin 3 --out " + (dir / "map.nrrd").string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  const nlohmann::json pieces = read_summary(dir)["stages"]["labelmap"]["pieces_per_label"];
+  EXPECT_GT(pieces["1"]["pieces"].get<int>(), 1) << pieces.dump();
+  EXPECT_LT(pieces["1"]["largest_share"].get<double>(), 0.95) << pieces.dump();
+  EXPECT_EQ(pieces["2"]["pieces"].get<int>(), 1) << pieces.dump();
+  EXPECT_EQ(pieces["2"]["largest_share"].get<double>(), 1.0) << pieces.dump();
+  EXPECT_NE(result.stderr_text.find("warning: label 1 'plate' is in "), std::string::npos)
+      << result.stderr_text;
+  EXPECT_EQ(result.stderr_text.find("warning: label 2"), std::string::npos) << result.stderr_text;
 }
