@@ -71,7 +71,7 @@ def path_tables(runs):
              lambda r, a: each(a, lambda n, a: f"{100 * value(n, a, 'max_fiber_strain'):.1f}")),
             (f"length change (mm), {names}",
              lambda r, a: each(a, lambda n, a: f"{value(n, a, 'length_change_mm'):.2f}")),
-            ("deepest free node in a bone (mm)",
+            ("deepest node in a bone, its own footprint aside (mm)",
              lambda r, a: f"{max(value(n, a, 'max_penetration_mm') for n in ligaments):.2f}"),
         ]
         print(f"{label.capitalize()}:")
