@@ -1,8 +1,9 @@
 #pragma once
 /// @brief Reading one table of a TOML config into parameters, for every config of the project
-/// (build and knee configs, flexion configs): typed values with the file, line and key in every
-/// error, and unknown keys (typos) refused. A config's parameter list (its visit_* functions)
-/// is read with `read_fields`, so that the list is the one place that names a key.
+/// (build and knee configs, flexion configs, scenes and tear scenes): typed values with the file,
+/// line and key in every error, and unknown keys (typos) refused. A config's parameter list (its
+/// visit_* functions) is read with `read_fields`, so that the list is the one place that names a
+/// key.
 
 #include "common/config_choice.hpp"
 #include "common/config_field_kinds.hpp"

@@ -46,6 +46,15 @@ struct FieldJsonWriter {
   }
 };
 
+/// A parameter list's values as one JSON object.
+template <class P, class VisitFields>
+nlohmann::json as_json(const P& parameters, VisitFields visit_fields)
+{
+  nlohmann::json json = nlohmann::json::object();
+  visit_fields(parameters, FieldJsonWriter{json});
+  return json;
+}
+
 /// The writer's inverse: reads each visited parameter from `json`, which must have every key
 /// (a file ligsim wrote); `where` names the file in errors.
 struct FieldJsonReader {

@@ -323,7 +323,7 @@ void run_labelled_knee_job(const BuildOptions& o, const std::string& target)
     run_knee_build_job(knee, target, {{"labels", found.labels}, {"notes", found.notes}});
   } catch (const InputError& e) {
     fail("{} (the knee the map's names describe is {}: edit it, leaving a ligament out if need "
-         "be, and build it with `ligsim build --config {} --out {}`)",
+         "be, and build it with `ligsim build --config {} --out {}` and your other flags)",
          e.what(), config.string(), config.string(), out.string());
   }
 }

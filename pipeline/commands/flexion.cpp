@@ -49,9 +49,7 @@ struct FlexionJobOptions {
 /// The Weiss material's parameters as summary.json records them: as [material] names them.
 nlohmann::json material_json(const sim::MaterialParameters& m)
 {
-  nlohmann::json json = nlohmann::json::object();
-  sim::visit_weiss_material(m, FieldJsonWriter{json});
-  return json;
+  return as_json(m, [](auto& p, auto&& v) { sim::visit_weiss_material(p, v); });
 }
 
 void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,

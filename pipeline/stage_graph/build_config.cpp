@@ -195,15 +195,6 @@ std::string apply_part_defaults(BuildConfig& config)
 
 namespace {
 
-/// Writes each visited parameter as a JSON member.
-template <class P, class VisitFields>
-nlohmann::json as_json(const P& parameters, VisitFields visit_fields)
-{
-  nlohmann::json json = nlohmann::json::object();
-  visit_fields(parameters, FieldJsonWriter{json});
-  return json;
-}
-
 std::string path_text(const fs::path& path)
 {
   return path.empty() ? "" : path.string();

@@ -26,9 +26,7 @@ namespace {
 /// through the same list).
 nlohmann::json material_json(const sim::MaterialParameters& m)
 {
-  nlohmann::json json = nlohmann::json::object();
-  sim::visit_weiss_material(m, FieldJsonWriter{json});
-  return json;
+  return as_json(m, [](auto& p, auto&& v) { sim::visit_weiss_material(p, v); });
 }
 
 /// The knee's bones in its folder, repaired as a ligament's model stage repairs them.

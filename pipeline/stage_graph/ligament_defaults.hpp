@@ -11,7 +11,7 @@
 namespace ligsim::pipeline {
 
 struct LigamentDefaults {
-  sim::MaterialParameters material;
+  sim::MaterialParameters material = sim::mcl_material();
   std::string material_source;
   double failure_strain = 0.171; ///< fiber strain (stretch - 1)
   double failure_load_n = 799.0;

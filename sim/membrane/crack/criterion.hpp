@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 namespace ligsim::membrane {
 
 struct TearThresholds {
