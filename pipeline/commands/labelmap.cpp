@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <memory>
 #include <tuple>
 
@@ -88,12 +89,13 @@ Part read_part(const std::string& text)
 /// them).
 nlohmann::json pieces_per_label(const labelmap::LabelImage& image,
                                 const std::vector<labelmap::LabelName>& names,
-                                const std::vector<int>& labels, const Eigen::Vector3d& spacing)
+                                const std::map<int, long>& voxels_per_label,
+                                const Eigen::Vector3d& spacing)
 {
   nlohmann::json pieces = nlohmann::json::object();
-  for (int label : labels) {
-    if (std::find(image.labels.begin(), image.labels.end(), label) == image.labels.end())
-      continue; // covered by later parts: voxels_per_label says 0
+  for (const auto& [label, voxels] : voxels_per_label) {
+    if (voxels == 0)
+      continue; // covered by later parts
     const labelmap::Selection s = labelmap::label_pieces(image, label);
     const double kept = static_cast<double>(s.voxels - s.filled_hole_voxels);
     const double share = kept / (kept + static_cast<double>(s.dropped_voxels));
@@ -163,19 +165,21 @@ void run_labelmap(const LabelmapOptions& o)
   summary.inputs() = {{"parts", o.parts}, {"around", o.around}};
   summary.results()["colour_table"] = names.empty() ? "" : table.string();
   summary.parameters() = {{"spacing_mm", o.spacing}, {"margin_mm", o.margin_mm}};
+  std::map<int, long> voxel_counts;
+  for (const auto& part : parts)
+    voxel_counts[part.label] = 0;
+  for (std::int32_t voxel : image.labels)
+    if (const auto found = voxel_counts.find(voxel); found != voxel_counts.end())
+      ++found->second;
   nlohmann::json counts = nlohmann::json::object();
-  std::vector<int> labels;
-  for (const auto& part : parts) {
-    counts[std::to_string(part.label)] =
-        std::count(image.labels.begin(), image.labels.end(), part.label);
-    labels.push_back(part.label);
-  }
+  for (const auto& [label, voxels] : voxel_counts)
+    counts[std::to_string(label)] = voxels;
   const Eigen::Vector3d spacing(o.spacing[0], o.spacing[1], o.spacing[2]);
   summary.add_stage("labelmap", meter,
                     {{"dims", {image.dims.x(), image.dims.y(), image.dims.z()}},
                      {"origin_mm", {image.origin_mm.x(), image.origin_mm.y(), image.origin_mm.z()}},
                      {"voxels_per_label", counts},
-                     {"pieces_per_label", pieces_per_label(image, names, labels, spacing)},
+                     {"pieces_per_label", pieces_per_label(image, names, voxel_counts, spacing)},
                      {"repairs_per_label", repairs}});
   summary.write(out.parent_path().empty() ? fs::path(".") : out.parent_path());
   log_info(fmt::format("wrote {} ({} x {} x {} voxels)", out.string(), image.dims.x(),
