@@ -397,7 +397,7 @@ void run_verify_febio(const FebioOptions& options)
   summary.inputs()["model"] = settings.model_dir.string();
   summary.inputs()["config"] = options.flexion.config.string();
   summary.inputs()["febio"] = options.febio.string();
-  const sim::KneeModel model = sim::load_knee_model(settings.model_dir);
+  const sim::KneeModel model = sim::load_one_ligament(settings.model_dir, "verify febio");
   const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   const sim::ResolvedAxis& axis = motion.axis;
   const double setup_s = seconds_since(start);

@@ -1,5 +1,6 @@
 #include "sim/febio/knee_feb.hpp"
 
+#include "common/error.hpp"
 #include "sim/contact/bone_penetration.hpp"
 #include "sim/contact/contact_surface.hpp"
 #include "sim/flexion/femur_poses.hpp"
@@ -94,13 +95,25 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   if ((first.matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() > 1e-12)
     problem.settle_steps = 1;
   femur.contact = problem.contact && in_contact(settings.contact, "femur");
-  FebRigidBody tibia;
-  tibia.name = "tibia";
-  tibia.surface = *model.tibia;
-  tibia.center_mm = tibia.surface.V.colwise().mean().transpose();
-  tibia.attached_nodes = model.tibia_nodes;
-  tibia.contact = problem.contact && in_contact(settings.contact, "tibia");
-  problem.bones = {femur, tibia};
+  if (!bone_of(model, model.distal_bone))
+    throw InputError("the model's distal footprint is bound to the " + model.distal_bone +
+                     ", which the model has no surface of");
+  problem.bones = {femur};
+  // The fixed bones, the fibula where the knee has one: the distal footprint is bound to its own
+  // bone (an LCL's to the fibula), and the ligament slides on the others, as in `ligsim flexion`.
+  for (const char* name : {"tibia", "fibula"}) {
+    const TriangleSurface* surface = bone_of(model, name);
+    if (!surface)
+      continue;
+    FebRigidBody bone;
+    bone.name = name;
+    bone.surface = *surface;
+    bone.center_mm = surface->V.colwise().mean().transpose();
+    if (name == model.distal_bone)
+      bone.attached_nodes = model.tibia_nodes;
+    bone.contact = problem.contact && in_contact(settings.contact, name);
+    problem.bones.push_back(std::move(bone));
+  }
   // The same start as ligsim's pre-push (sim/flexion/initial_overlap): each bone the ligament
   // overlaps as segmented starts shrunk by the deepest overlap plus half of d_hat.
   std::vector<std::string> overlaps;
@@ -136,7 +149,8 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
                                 : "Time k is the flexion angle number k of: ") +
       joined(steps.angles_deg) +
       " deg; the femur's pose is prescribed exactly at each time (its six rigid degrees of freedom "
-      "follow load curves 2-7), the tibia is fixed.");
+      "follow load curves 2-7), the tibia" +
+      std::string(model.fibula ? " and the fibula are" : " is") + " fixed.");
   notes.push_back(fmt::format(
       "Material: Weiss' transversely isotropic law, mu = {} MPa (c1 = mu/2), K = {} MPa with {} "
       "(pressure_model {}), fiber c3 = {} MPa, c4 = {}, c5 = {} MPa, lambda* = {}; fiber "

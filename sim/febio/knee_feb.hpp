@@ -13,7 +13,8 @@
 
 namespace ligsim::sim {
 
-/// Bones in the file's order: the femur (index 0) and the tibia (index 1).
+/// Bones in the file's order: the femur (index 0), the tibia (index 1), the fibula where the
+/// model has one (index 2).
 constexpr std::size_t feb_femur = 0;
 constexpr std::size_t feb_tibia = 1;
 
@@ -27,7 +28,8 @@ KneeModel feb_start_model(const KneeModel& model, const FlexionSettings& setting
 
 /// The problem of sweeping `model` through `steps` with the femur's motion of `conditions`
 /// (knee_conditions): one step per angle, the femur's rotations taken about `center_mm` (a
-/// point of the flexion axis), the tibia fixed, contact with the bones settings.contact names
+/// point of the flexion axis), the tibia and fibula fixed, the distal footprint bound to
+/// model.distal_bone, contact with the bones settings.contact names
 /// when it is on. FEBio implements only the `weiss` fiber convention: a `paper` material is
 /// written with FEBio's law and the same constants, and a warning among the notes says so
 /// (`warnings` receives it too). `contact`: FEBio's contact settings (penalty scale).

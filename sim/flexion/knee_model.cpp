@@ -126,6 +126,19 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
   return ligaments;
 }
 
+KneeModel load_one_ligament(const fs::path& dir, const std::string& job)
+{
+  std::vector<LigamentModel> all = load_knee(dir, "ligament");
+  if (all.size() > 1) {
+    std::string names;
+    for (const LigamentModel& ligament : all)
+      names += (names.empty() ? "" : ", ") + ligament.name;
+    fail("{}: {} is a knee of {} ligaments ({}): give one ligament's folder (--model {})", job,
+         dir.string(), all.size(), names, all.front().folder.string());
+  }
+  return std::move(all.front().model);
+}
+
 std::optional<BuiltMaterial> read_built_material(const fs::path& dir)
 {
   const fs::path file = dir / "scene.toml";

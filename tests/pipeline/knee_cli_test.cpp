@@ -276,6 +276,34 @@ TEST(KneeCli, PicturesShowTheWholeKneeFromTheFrontAndTheSide)
     EXPECT_TRUE(fs::exists(out / file)) << file;
 }
 
+TEST(KneeCli, ALigamentOnTheFibulaIsExportedWithTheKneesThreeBones)
+{
+  const fs::path out = fresh_folder("knee_export") / "C.feb";
+  const std::string export_febio =
+      "export febio --axis 0,-5,16,1,-5,16 --angles 0,30 --out " + out.string() + " --model ";
+  const CliResult result = run_ligsim(export_febio + (knee_model() / "C").string());
+  ASSERT_EQ(result.exit_code, 0) << result.stderr_text;
+  std::ifstream in(out);
+  const std::string feb{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // C's distal footprint is bound to the fibula; it slides on the tibia as in the flexion.
+  for (const char* bone : {"femur", "tibia", "fibula"})
+    EXPECT_NE(feb.find("<Elements type=\"tri3\" name=\"" + std::string(bone) + "\""),
+              std::string::npos)
+        << bone;
+  EXPECT_NE(feb.find("<NodeSet name=\"fibula_attachment\">"), std::string::npos);
+  EXPECT_EQ(feb.find("<NodeSet name=\"tibia_attachment\">"), std::string::npos);
+  EXPECT_NE(feb.find("name=\"ligament_on_tibia\""), std::string::npos);
+
+  // The knee's own folder holds three ligaments: the user is asked for one.
+  const fs::path refused_out = fresh_folder("knee_export_refused") / "knee.feb";
+  const CliResult refused = run_ligsim("export febio --axis 0,-5,16,1,-5,16 --out " +
+                                       refused_out.string() + " --model " + knee_model().string());
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.stderr_text.find("a knee of 3 ligaments (A, B, C)"), std::string::npos)
+      << refused.stderr_text;
+  EXPECT_FALSE(fs::exists(refused_out));
+}
+
 TEST(KneeCli, BadKneeConfigsAreRejectedWithWhereAndWhat)
 {
   const auto expect_rejected = [](const std::string& text, const std::string& expected) {

@@ -435,6 +435,41 @@ TEST(FebWriter, PaperConventionIsWrittenWithAWarning)
             std::string::npos);
 }
 
+TEST(FebWriter, AnLclIsBoundToTheFibulaAndSlidesOnTheTibiaToo)
+{
+  // The bar as an LCL: its distal footprint on the fibula (the sphere below), the tibia a
+  // sphere beside the bar.
+  KneeModel model = bar_knee();
+  model.fibula = model.tibia;
+  model.tibia = bone(sphere_surface({12.0, 2.0, 4.0}, 3.0, 1));
+  model.distal_bone = "fibula";
+  FlexionSettings settings = bar_settings(0.029);
+  settings.contact.enabled = true;
+  std::vector<std::string> warnings;
+  const FebProblem problem =
+      knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
+                       angle_steps(settings.angles_deg), bar_axis().point_mm, warnings);
+  ASSERT_EQ(problem.bones.size(), 3u);
+  EXPECT_EQ(problem.bones[feb_tibia].name, "tibia");
+  EXPECT_EQ(problem.bones[feb_tibia].surface.V, model.tibia->V);
+  EXPECT_TRUE(problem.bones[feb_tibia].attached_nodes.empty());
+  EXPECT_EQ(problem.bones[2].name, "fibula");
+  EXPECT_EQ(problem.bones[2].attached_nodes, model.tibia_nodes);
+  const auto root = parsed(feb_text(problem));
+  vtkXMLDataElement* mesh = child(root, "Mesh");
+  EXPECT_EQ(count(child(mesh, "Elements", "name", "fibula"), "elem"), model.fibula->F.rows());
+  EXPECT_EQ(count(child(mesh, "Elements", "name", "tibia"), "elem"), model.tibia->F.rows());
+  EXPECT_NE(child(mesh, "NodeSet", "name", "fibula_attachment"), nullptr);
+  EXPECT_EQ(child(mesh, "NodeSet", "name", "tibia_attachment"), nullptr);
+  EXPECT_EQ(count(child(root, "Contact"), "contact"), 3);
+  EXPECT_NE(child(child(root, "Contact"), "contact", "name", "ligament_on_tibia"), nullptr);
+  // A footprint bound to a bone the model lacks is refused.
+  model.fibula = nullptr;
+  EXPECT_THROW(knee_feb_problem(model, settings, knee_conditions(model, bar_axis(), 60.0),
+                                angle_steps(settings.angles_deg), bar_axis().point_mm, warnings),
+               InputError);
+}
+
 TEST(FebWriter, RefusesProblemsItCannotWrite)
 {
   const FebProblem good = bar_problem(bar_settings(0.029));
