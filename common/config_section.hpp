@@ -129,6 +129,8 @@ public:
   }
 
   bool has(const std::string& key) const { return m_table && m_table->has(key); }
+  /// "FILE [table]", for messages about the table as a whole.
+  std::string where() const { return m_table ? m_table->where() : m_file.string(); }
 
   /// The table itself, for a reader of its own (none where the config lacks it).
   TomlTable* table() { return m_table; }

@@ -3,12 +3,17 @@
 #include "common/error.hpp"
 #include "common/fields_json.hpp"
 #include "common/knee_manifest.hpp"
+#include "common/progress.hpp"
 #include "common/toml_overrides.hpp"
 #include "pipeline/stage_graph/config_fields.hpp"
 #include "pipeline/stage_graph/config_section.hpp"
 #include "pipeline/stage_graph/ligament_defaults.hpp"
 #include "stages/anatomy/part_names.hpp"
 #include "stages/io/surface_path.hpp"
+
+#include <fmt/format.h>
+
+#include <string_view>
 
 namespace ligsim::pipeline {
 
@@ -105,11 +110,47 @@ std::string read_attachment_sections(const toml::table& table, const std::string
   return distal;
 }
 
+namespace {
+
+/// The names a build config's [material] gave two keys before it took the simulator's: a config
+/// that gives one is read as the key, with a note, so that it keeps working as written.
+struct FormerName {
+  std::string_view key;
+  const char* former;
+};
+constexpr FormerName former_material_names[] = {{"k_mpa", "bulk_modulus_mpa"},
+                                                {"convention", "fiber_convention"}};
+
+/// FieldReader that reads a key under its former name where the table gives that.
+struct FormerNameReader {
+  ConfigSection& section;
+
+  template <class Value> void operator()(const char* key, Value&& value)
+  {
+    for (const FormerName& name : former_material_names) {
+      if (name.key != key || !section.has(name.former))
+        continue;
+      if (section.has(key))
+        section.fail_at(name.former, fmt::format("the former name of {}, which the table gives "
+                                                 "too: give one",
+                                                 key));
+      log_info(fmt::format("note: {}: {} is now called {}; read as {}", section.where(),
+                           name.former, key, key));
+      FieldReader{section}(name.former, std::forward<Value>(value));
+      return;
+    }
+    FieldReader{section}(key, std::forward<Value>(value));
+  }
+};
+
+} // namespace
+
 void read_material_section(const toml::table& table, const std::string& prefix,
                            const fs::path& file, BuildConfig& config)
 {
-  read_fields(&table, "material", prefix + "material", file, config.material,
-              [](auto& p, auto&& v) { visit_material(p, v); });
+  ConfigSection section(table_at(&table, "material"), prefix + "material", file);
+  visit_material(config.material, FormerNameReader{section});
+  section.reject_unknown();
 }
 
 } // namespace config_reading

@@ -103,20 +103,11 @@ template <class P, class Visit> void visit_error_estimate(P& p, Visit&& visit)
   visit("mesh_scale", p.mesh_scale);
 }
 
-/// The Weiss material (sim/material/material_fields.hpp) under the build config's names: K is
-/// `bulk_modulus_mpa` and the convention `fiber_convention` here (`k_mpa` and `convention` in
-/// flexion configs and scenes).
+/// The Weiss material: the simulator's list (sim/material/material_fields.hpp), as flexion
+/// configs and scenes name it.
 template <class P, class Visit> void visit_material(P& p, Visit&& visit)
 {
-  auto& f = *p.fiber;
-  visit("mu_mpa", p.mu_mpa);
-  visit("c3_mpa", f.c3_mpa);
-  visit("c4", f.c4);
-  visit("c5_mpa", f.c5_mpa);
-  visit("lambda_star", f.lambda_star);
-  visit("bulk_modulus_mpa", p.bulk_modulus_mpa);
-  visit("fiber_convention", sim::fiber_convention(f));
-  visit("volumetric", sim::volumetric_law(p));
+  sim::visit_weiss_material(p, visit);
 }
 
 /// Without axis_given, which the reader derives from the presence of the axis keys.

@@ -1,8 +1,7 @@
 #pragma once
-/// @brief The Weiss material's keys, listed once. A flexion config's [material] holds them all; a
-/// scene splits them between [material] (the ground substance) and [fibers] (the fiber law). A
-/// build config's [material] names two of them its own way
-/// (pipeline/stage_graph/config_fields.hpp). Each visit_*(m, visit) calls visit(key, member) or
+/// @brief The Weiss material's keys, listed once. A flexion config's and a build config's
+/// [material] hold them all; a scene splits them between [material] (the ground substance) and
+/// [fibers] (the fiber law). Each visit_*(m, visit) calls visit(key, member) or
 /// visit(key, choice(...)), as the configs' other key lists do (common/config_section.hpp reads
 /// them, common/fields_json.hpp writes them).
 

@@ -182,7 +182,7 @@ TEST(FlexionCli, TheModelsOwnMaterialAndInSituStrainAreUsedUnlessTheConfigSetsTh
                         << "\"\nfemur = \"" << (shape / "femur.stl").string() << "\"\ntibia = \""
                         << (shape / "tibia.stl").string()
                         << "\"\n[voxelize]\nspacing_mm = 0.4\n[model]\nin_situ_strain = 0.05\n"
-                           "[material]\nmu_mpa = 3.5\nfiber_convention = \"weiss\"\n";
+                           "[material]\nmu_mpa = 3.5\nconvention = \"weiss\"\n";
   const fs::path model = fresh_folder("flexion_material_model");
   const CliResult built =
       run_ligsim("build --config " + config.string() + " --out " + model.string());

@@ -70,7 +70,7 @@ TEST(LabelmapKnee, TheHraKneeFromItsLabelMapBuildsAndFlexesInsidePublishedRanges
       << "end_length_mm = 15.0\nbone_distance_mm = 2.0\n\n[centerline]\nalpha = 0.1\n"
       << "span = \"attachments\"\n\n[tetmesh]\ncell_size_mm = 1.5\n\n[material]\nmu_mpa = 2.88\n"
       << "c3_mpa = 0.57\nc4 = 48.0\nc5_mpa = 467.1\nlambda_star = 1.063\n"
-      << "bulk_modulus_mpa = 793.65\nfiber_convention = \"weiss\"\nvolumetric = \"lnj\"\n";
+      << "k_mpa = 793.65\nconvention = \"weiss\"\nvolumetric = \"lnj\"\n";
   const CliResult build = run_ligsim("build --config " + (dir / "build.toml").string() + " --out " +
                                      (dir / "model").string());
   ASSERT_EQ(build.exit_code, 0) << build.stderr_text;

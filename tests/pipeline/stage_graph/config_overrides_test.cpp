@@ -1,5 +1,5 @@
 /// `--set TABLE.KEY=VALUE` through the build and knee config readers: over the file, alone, over
-/// every [[ligament]], and refused with the assignment named.
+/// every [[ligament]], and refused with the assignment named; and the material's former key names.
 
 #include "../cli_runner.hpp"
 
@@ -90,9 +90,28 @@ TEST(ConfigOverrides, MistakesNameTheAssignment)
   EXPECT_THAT(build_error(file, {"tetmsh.order=2"}), HasSubstr("tetmsh"));
   EXPECT_THAT(build_error(file, {"tetmesh.order"}), HasSubstr("expected TABLE.KEY=VALUE"));
   // The material's enumerated keys are checked where they are read, not when a scene runs.
-  EXPECT_THAT(build_error(file, {"material.fiber_convention=wiess"}),
-              HasSubstr("fiber_convention: expected \"paper\" or \"weiss\", got \"wiess\""));
+  EXPECT_THAT(build_error(file, {"material.convention=wiess"}),
+              HasSubstr("convention: expected \"paper\" or \"weiss\", got \"wiess\""));
   // Without a file, the messages about a table as a whole name the settings too.
   EXPECT_THAT(build_error({}, {"anatomy.side=up"}),
               HasSubstr("--set: [anatomy] side must be \"left\" or \"right\""));
+}
+
+TEST(ConfigOverrides, TheMaterialsFormerKeyNamesAreReadAsItsKeys)
+{
+  // [material] bulk_modulus_mpa and fiber_convention, as build configs named k_mpa and
+  // convention, in the file and by --set, and over every ligament of a knee.
+  const fs::path file = written("mcl.toml", "[material]\nbulk_modulus_mpa = 500\n");
+  const pipeline::BuildConfig config =
+      pipeline::load_build_config(file, {"material.fiber_convention=weiss"});
+  EXPECT_EQ(config.material.bulk_modulus_mpa, 500.0);
+  EXPECT_EQ(config.material.fiber->convention, sim::FiberConvention::weiss);
+  // Both names at once: which one is meant is not guessed.
+  EXPECT_THAT(build_error(file, {"material.k_mpa=700"}),
+              HasSubstr("bulk_modulus_mpa: the former name of k_mpa, which the table gives too"));
+  const fs::path knee =
+      written("knee.toml", "[input]\nfemur = \"femur.stl\"\ntibia = \"tibia.stl\"\n\n[[ligament]]\n"
+                           "name = \"MCL\"\n[ligament.input]\nsurface = \"mcl.stl\"\n"
+                           "[ligament.material]\nbulk_modulus_mpa = 600\n");
+  EXPECT_EQ(pipeline::load_knee_config(knee).ligaments[0].build.material.bulk_modulus_mpa, 600.0);
 }
