@@ -3,7 +3,6 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
-#include "common/fields_json.hpp"
 #include "common/progress.hpp"
 #include "common/resources.hpp"
 #include "common/run_summary.hpp"
@@ -12,6 +11,7 @@
 #include "pipeline/render/offscreen_display.hpp"
 #include "pipeline/reports/config_json.hpp"
 #include "pipeline/reports/knee_reports.hpp"
+#include "pipeline/stage_graph/build_config.hpp"
 #include "sim/flexion/error_estimate.hpp"
 #include "sim/flexion/flexion_output.hpp"
 #include "sim/flexion/free_flexion.hpp"
@@ -19,7 +19,6 @@
 #include "sim/flexion/knee_sweep.hpp"
 #include "sim/flexion/ligament_pairs.hpp"
 #include "sim/flexion/plausibility.hpp"
-#include "sim/material/material_fields.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -46,12 +45,6 @@ struct FlexionJobOptions {
   bool no_error_estimate = false;
 };
 
-/// The Weiss material's parameters as summary.json records them: as [material] names them.
-nlohmann::json material_json(const sim::MaterialParameters& m)
-{
-  return as_json(m, [](auto& p, auto&& v) { sim::visit_weiss_material(p, v); });
-}
-
 void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMotion& motion,
                        RunSummary& summary)
 {
@@ -74,8 +67,9 @@ void record_parameters(const sim::FlexionSettings& settings, const sim::KneeMoti
   // Unless the config or a flag sets them, each ligament keeps the material and in-situ strain
   // it was built with (results.material, or results.ligaments.<name>.material, say which).
   const char* built = "each ligament's own, as built (results)";
-  parameters["material"] =
-      settings.given.count("material") ? material_json(settings.material) : nlohmann::json(built);
+  parameters["material"] = settings.given.count("material")
+                               ? pipeline::material_json(settings.material)
+                               : nlohmann::json(built);
   parameters["in_situ_strain"] = settings.given.count("in_situ_strain")
                                      ? nlohmann::json(settings.in_situ_strain)
                                      : nlohmann::json(built);
@@ -143,7 +137,7 @@ nlohmann::json ligament_results(const sim::LigamentSweep& sweep)
                            {"failure_strain", ligament.failure_strain},
                            {"failure_load_n", ligament.failure_load_n},
                            {"warnings", reports::to_json(sweep.warnings)}}},
-                         {"material", material_json(sweep.settings.material)},
+                         {"material", pipeline::material_json(sweep.settings.material)},
                          {"in_situ_strain", sweep.settings.in_situ_strain},
                          {"success", result.success}};
   if (sweep.thickness)

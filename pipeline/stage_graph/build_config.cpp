@@ -273,12 +273,17 @@ nlohmann::json stage_parameters(const BuildConfig& c, const std::string& stage)
     return as_json(c.fibers, [](auto& p, auto&& v) { visit_fibers(p, v); });
   if (stage == "model") {
     nlohmann::json model = as_json(c.model, [](auto& p, auto&& v) { visit_model(p, v); });
-    model["material"] = as_json(c.material, [](auto& p, auto&& v) { visit_material(p, v); });
+    model["material"] = material_json(c.material);
     model["flexion"] = as_json(c.flexion, [](auto& p, auto&& v) { visit_flexion(p, v); });
     model["flexion"]["axis_given"] = c.flexion.axis_given;
     return model;
   }
   fail("unknown stage '{}'", stage);
+}
+
+nlohmann::json material_json(const sim::MaterialParameters& material)
+{
+  return as_json(material, [](auto& p, auto&& v) { visit_material(p, v); });
 }
 
 nlohmann::json to_json(const BuildConfig& c)

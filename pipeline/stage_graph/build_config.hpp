@@ -119,6 +119,10 @@ std::string apply_part_defaults(BuildConfig& config);
 BuildConfig load_build_config(const std::filesystem::path& file,
                               const std::vector<std::string>& overrides = {});
 
+/// The Weiss material under its config keys ([material] of build and flexion configs), as
+/// summary.json, knee.json and the stage cache key hold it.
+nlohmann::json material_json(const sim::MaterialParameters& material);
+
 /// The parameters one stage depends on, as JSON (for summary.json and the cache key).
 nlohmann::json stage_parameters(const BuildConfig& config, const std::string& stage);
 

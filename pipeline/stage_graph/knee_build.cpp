@@ -2,7 +2,6 @@
 
 #include "common/atomic_file.hpp"
 #include "common/error.hpp"
-#include "common/fields_json.hpp"
 #include "common/knee_manifest.hpp"
 #include "common/progress.hpp"
 #include "common/run_summary.hpp"
@@ -10,7 +9,6 @@
 #include "pipeline/stage_graph/companion_build.hpp"
 #include "pipeline/stage_graph/stage_files.hpp"
 #include "pipeline/stage_graph/stage_graph.hpp"
-#include "sim/material/material_fields.hpp"
 #include "stages/io/vtk_convert.hpp"
 
 #include <fmt/format.h>
@@ -21,13 +19,6 @@ namespace ligsim::pipeline {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// The material as a flexion config's [material] keys (knee.json's, which flexion reads back
-/// through the same list).
-nlohmann::json material_json(const sim::MaterialParameters& m)
-{
-  return as_json(m, [](auto& p, auto&& v) { sim::visit_weiss_material(p, v); });
-}
 
 /// The knee's bones in its folder, repaired as a ligament's model stage repairs them.
 std::map<std::string, std::string> write_bones(const KneeConfig& knee, const fs::path& dir)
