@@ -22,8 +22,8 @@ void validate(const ContactConfig& config)
          "needs exact distances out to d_hat",
          config.grid.band_mm, d_hat + 2.0 * config.grid.voxel_mm);
   for (const std::string& bone : config.bones)
-    if (bone != "femur" && bone != "tibia")
-      fail("contact: bones are \"femur\" and \"tibia\", got \"{}\"", bone);
+    if (bone != "femur" && bone != "tibia" && bone != "fibula")
+      fail("contact: bones are \"femur\", \"tibia\" and \"fibula\", got \"{}\"", bone);
 }
 
 } // namespace ligsim::sim
