@@ -34,8 +34,7 @@ void run_export_febio(const ExportOptions& options)
   if (options.out.extension() != ".feb")
     fail("export febio: --out {}: give a file name ending in .feb", options.out.string());
   sim::FlexionSettings settings = flexion_settings_from(options.flexion, "export febio");
-  sim::use_folder_material(settings);
-  const sim::KneeModel model = sim::load_one_ligament(settings.model_dir, "export febio");
+  const sim::KneeModel model = sim::load_ligament_as_flexed(settings, "export febio");
   const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   const sim::BoundaryConditions conditions =
       sim::knee_conditions(model, sim::femur_rigid_motion(motion));

@@ -380,7 +380,7 @@ void run_verify_febio(const FebioOptions& options)
   RunSummary summary("verify febio");
   const auto start = std::chrono::steady_clock::now();
   sim::FlexionSettings settings = flexion_settings_from(options.flexion, "verify febio");
-  sim::use_folder_material(settings);
+  const sim::KneeModel model = sim::load_ligament_as_flexed(settings, "verify febio");
   settings.images = false;
   if (settings.material.fiber->convention == sim::FiberConvention::paper) {
     settings.material.fiber->convention = sim::FiberConvention::weiss;
@@ -397,7 +397,6 @@ void run_verify_febio(const FebioOptions& options)
   summary.inputs()["model"] = settings.model_dir.string();
   summary.inputs()["config"] = options.flexion.config.string();
   summary.inputs()["febio"] = options.febio.string();
-  const sim::KneeModel model = sim::load_one_ligament(settings.model_dir, "verify febio");
   const sim::KneeMotion motion = sim::resolve_knee_motion(model, settings);
   const sim::ResolvedAxis& axis = motion.axis;
   const double setup_s = seconds_since(start);

@@ -17,6 +17,7 @@ namespace ligsim::sim {
 /// model has one (index 2).
 constexpr std::size_t feb_femur = 0;
 constexpr std::size_t feb_tibia = 1;
+constexpr std::size_t feb_fibula = 2; ///< where the model has one
 
 /// `model` as a .feb file holds it: where the config reshapes the overlap with the bones
 /// (ContactConfig::reshape_overlap, contact on), the ligament pushed out of them as `ligsim

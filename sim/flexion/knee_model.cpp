@@ -126,9 +126,10 @@ std::vector<LigamentModel> load_knee(const fs::path& dir, const std::string& sin
   return ligaments;
 }
 
-KneeModel load_one_ligament(const fs::path& dir, const std::string& job)
+LigamentModel load_ligament(const fs::path& dir, const std::string& single_name,
+                            const std::string& job)
 {
-  std::vector<LigamentModel> all = load_knee(dir, "ligament");
+  std::vector<LigamentModel> all = load_knee(dir, single_name);
   if (all.size() > 1) {
     std::string names;
     for (const LigamentModel& ligament : all)
@@ -136,7 +137,7 @@ KneeModel load_one_ligament(const fs::path& dir, const std::string& job)
     fail("{}: {} is a knee of {} ligaments ({}): give one ligament's folder (--model {})", job,
          dir.string(), all.size(), names, all.front().folder.string());
   }
-  return std::move(all.front().model);
+  return std::move(all.front());
 }
 
 std::optional<BuiltMaterial> read_built_material(const fs::path& dir)

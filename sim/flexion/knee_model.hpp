@@ -97,11 +97,12 @@ std::optional<BuiltMaterial> read_built_material(const std::filesystem::path& di
 std::vector<LigamentModel> load_knee(const std::filesystem::path& dir,
                                      const std::string& single_name);
 
-/// The one ligament of `dir` as `ligsim flexion` loads it: a one-ligament model, or one
-/// ligament's folder of a knee with the knee's bones (its fibula too), distal bone and anatomy.
-/// Throws InputError as load_knee does, and for a knee's own folder of several ligaments (`job`
-/// names the command in the message).
-KneeModel load_one_ligament(const std::filesystem::path& dir, const std::string& job);
+/// The one ligament of `dir` as load_knee loads it: a one-ligament model, or one ligament's
+/// folder of a knee with the knee's bones (its fibula too), distal bone and anatomy. Throws
+/// InputError as load_knee does, and for a knee's own folder of several ligaments, naming them
+/// (`job` names the command).
+LigamentModel load_ligament(const std::filesystem::path& dir, const std::string& single_name,
+                            const std::string& job);
 
 /// The bone called `name` ("femur", "tibia" or "fibula") of the model, null if it has none.
 const TriangleSurface* bone_of(const KneeModel& model, const std::string& name);

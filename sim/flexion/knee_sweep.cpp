@@ -60,17 +60,11 @@ FlexionSettings ligament_settings(const FlexionSettings& settings, const Ligamen
   return own;
 }
 
-void use_folder_material(FlexionSettings& settings)
+KneeModel load_ligament_as_flexed(FlexionSettings& settings, const std::string& job)
 {
-  LigamentModel ligament;
-  ligament.name = settings.ligament.name;
-  if (const auto knee = knee_of_ligament_folder(settings.model_dir))
-    ligament.manifest = knee->second;
-  else
-    ligament.built = read_built_material(settings.model_dir);
-  const FlexionSettings own = ligament_settings(settings, ligament);
-  settings.material = own.material;
-  settings.in_situ_strain = own.in_situ_strain;
+  LigamentModel ligament = load_ligament(settings.model_dir, settings.ligament.name, job);
+  settings = ligament_settings(settings, ligament);
+  return std::move(ligament.model);
 }
 
 std::string linear_tets_for_frames(std::vector<LigamentModel>& ligaments)

@@ -23,11 +23,10 @@ namespace ligsim::sim {
 /// takes `settings` as they are. The bones it meets by contact: the config's, else knee.json's.
 FlexionSettings ligament_settings(const FlexionSettings& settings, const LigamentModel& ligament);
 
-/// Gives `settings` the material and in-situ strain that `ligsim flexion` gives the one
-/// ligament of the model folder `settings.model_dir` (its knee's knee.json entry, or its own
-/// scene.toml), except what the config or the flags set: what `export febio` and `verify febio`
-/// use, so that they run the flexion's problem.
-void use_folder_material(FlexionSettings& settings);
+/// The one ligament of settings.model_dir as `ligsim flexion` runs it, for `export febio` and
+/// `verify febio`: its model (load_ligament), and `settings` made its own (ligament_settings: its
+/// material, in-situ strain and contact bones, except what the config or the flags set).
+KneeModel load_ligament_as_flexed(FlexionSettings& settings, const std::string& job);
 
 /// The ligaments of `all` that settings.ligaments names (all of them when empty). Throws
 /// InputError naming an unknown ligament, or a [ligament] table naming none of the knee's.

@@ -279,7 +279,7 @@ const FlexionStabilitySuite::LoadedModel& FlexionStabilitySuite::model(bool fine
   if (!slot) {
     auto loaded = std::make_unique<LoadedModel>();
     loaded->dir = fine ? m_fine_dir : m_coarse_dir;
-    loaded->model = load_knee_model(loaded->dir);
+    loaded->model = load_ligament(loaded->dir, "ligament", "verify stability").model;
     loaded->axis = resolve_flexion_axis(loaded->model, m_base.axis);
     slot = std::move(loaded);
   }

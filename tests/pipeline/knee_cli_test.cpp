@@ -293,6 +293,21 @@ TEST(KneeCli, ALigamentOnTheFibulaIsExportedWithTheKneesThreeBones)
   EXPECT_NE(feb.find("<NodeSet name=\"fibula_attachment\">"), std::string::npos);
   EXPECT_EQ(feb.find("<NodeSet name=\"tibia_attachment\">"), std::string::npos);
   EXPECT_NE(feb.find("name=\"ligament_on_tibia\""), std::string::npos);
+  EXPECT_NE(feb.find("the tibia and the fibula are fixed"), std::string::npos);
+
+  // The ligament's contact bones in knee.json ([[ligament]] contact_bones) hold, as in the
+  // flexion: C kept off the tibia.
+  const fs::path knee = fresh_folder("knee_export_contact_bones");
+  fs::copy(knee_model(), knee, fs::copy_options::recursive);
+  nlohmann::json manifest = read_json(knee / "knee.json");
+  manifest["ligaments"][2]["contact_bones"] = {"femur", "fibula"};
+  std::ofstream(knee / "knee.json") << manifest.dump(2);
+  const CliResult kept = run_ligsim(export_febio + (knee / "C").string());
+  ASSERT_EQ(kept.exit_code, 0) << kept.stderr_text;
+  std::ifstream kept_off(out);
+  const std::string off{std::istreambuf_iterator<char>(kept_off), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(off.find("name=\"ligament_on_tibia\""), std::string::npos);
+  EXPECT_NE(off.find("name=\"ligament_on_fibula\""), std::string::npos);
 
   // The knee's own folder holds three ligaments: the user is asked for one.
   const fs::path refused_out = fresh_folder("knee_export_refused") / "knee.feb";

@@ -453,8 +453,8 @@ TEST(FebWriter, AnLclIsBoundToTheFibulaAndSlidesOnTheTibiaToo)
   EXPECT_EQ(problem.bones[feb_tibia].name, "tibia");
   EXPECT_EQ(problem.bones[feb_tibia].surface.V, model.tibia->V);
   EXPECT_TRUE(problem.bones[feb_tibia].attached_nodes.empty());
-  EXPECT_EQ(problem.bones[2].name, "fibula");
-  EXPECT_EQ(problem.bones[2].attached_nodes, model.tibia_nodes);
+  EXPECT_EQ(problem.bones[feb_fibula].name, "fibula");
+  EXPECT_EQ(problem.bones[feb_fibula].attached_nodes, model.tibia_nodes);
   const auto root = parsed(feb_text(problem));
   vtkXMLDataElement* mesh = child(root, "Mesh");
   EXPECT_EQ(count(child(mesh, "Elements", "name", "fibula"), "elem"), model.fibula->F.rows());
