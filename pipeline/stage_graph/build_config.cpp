@@ -131,9 +131,10 @@ struct FormerNameReader {
       if (name.key != key || !section.has(name.former))
         continue;
       if (section.has(key))
-        section.fail_at(name.former, fmt::format("the former name of {}, which the table gives "
-                                                 "too: give one",
-                                                 key));
+        section.fail_at(name.former,
+                        fmt::format("the former name of {}, which the table gives too: give one "
+                                    "(--set over such a file: set the name the file uses)",
+                                    key));
       log_info(fmt::format("note: {}: {} is now called {}; read as {}", section.where(),
                            name.former, key, key));
       FieldReader{section}(name.former, std::forward<Value>(value));
