@@ -88,7 +88,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   femur.name = "femur";
   femur.surface = *model.femur;
   femur.center_mm = center_mm;
-  femur.attached_nodes = model.femur_nodes;
+  femur.attached_nodes = nodes_bound_to(model, "femur");
   femur.poses = femur_poses(conditions, steps);
   // A found path starts off the built pose: FEBio settles the prestrain there first.
   const Eigen::Isometry3d& first = femur.poses.front();
@@ -109,8 +109,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
     bone.name = name;
     bone.surface = *surface;
     bone.center_mm = surface->V.colwise().mean().transpose();
-    if (name == model.distal_bone)
-      bone.attached_nodes = model.tibia_nodes;
+    bone.attached_nodes = nodes_bound_to(model, name);
     bone.contact = problem.contact && in_contact(settings.contact, name);
     problem.bones.push_back(std::move(bone));
   }

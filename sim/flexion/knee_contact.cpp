@@ -59,11 +59,8 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
     for (const ConstraintSet& set : conditions.constraints)
       if (set.name == name)
         bone->motion = set.rigid;
-    // The femoral footprint's nodes are bound to the femur, the distal one's to its bone; the
-    // fibula moves with the tibia (both fixed here: the femur carries the knee's motion).
-    const std::vector<int> attached = name == "femur"             ? model.femur_nodes
-                                      : name == model.distal_bone ? model.tibia_nodes
-                                                                  : std::vector<int>{};
+    // The fibula moves with the tibia (both fixed here: the femur carries the knee's motion).
+    const std::vector<int>& attached = nodes_bound_to(model, name);
     bone->bound.assign(static_cast<std::size_t>(node_count), false);
     for (int n : attached)
       bone->bound[static_cast<std::size_t>(n)] = true;

@@ -76,6 +76,14 @@ const TriangleSurface* bone_of(const KneeModel& model, const std::string& name)
   return nullptr;
 }
 
+const std::vector<int>& nodes_bound_to(const KneeModel& model, const std::string& bone)
+{
+  static const std::vector<int> none;
+  if (bone == "femur")
+    return model.femur_nodes;
+  return bone == model.distal_bone ? model.tibia_nodes : none;
+}
+
 std::optional<std::pair<fs::path, KneeLigament>> knee_of_ligament_folder(const fs::path& dir)
 {
   const fs::path folder = fs::absolute(dir).lexically_normal();

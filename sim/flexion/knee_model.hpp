@@ -107,6 +107,10 @@ LigamentModel load_ligament(const std::filesystem::path& dir, const std::string&
 /// The bone called `name` ("femur", "tibia" or "fibula") of the model, null if it has none.
 const TriangleSurface* bone_of(const KneeModel& model, const std::string& name);
 
+/// The ligament's nodes bound to the bone called `bone`: the femoral footprint's to the femur,
+/// the distal one's to model.distal_bone, none to another bone.
+const std::vector<int>& nodes_bound_to(const KneeModel& model, const std::string& bone);
+
 /// Up the leg: from the tibia's mean vertex to the femur's (a hint for the axis fit and the
 /// pictures' up direction, not an anatomical axis).
 Eigen::Vector3d proximal_direction(const KneeModel& model);
