@@ -13,12 +13,6 @@ namespace ligsim::sim {
 
 namespace {
 
-bool in_contact(const ContactConfig& contact, const std::string& bone)
-{
-  return contact.bones.empty() ||
-         std::find(contact.bones.begin(), contact.bones.end(), bone) != contact.bones.end();
-}
-
 std::string joined(const std::vector<double>& values)
 {
   std::string text;
@@ -94,7 +88,12 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
   const Eigen::Isometry3d& first = femur.poses.front();
   if ((first.matrix() - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff() > 1e-12)
     problem.settle_steps = 1;
-  femur.contact = problem.contact && in_contact(settings.contact, "femur");
+  const std::vector<std::string> in_contact = contact_bones(model, settings.contact.bones);
+  const auto takes_contact = [&](const std::string& bone) {
+    return problem.contact &&
+           std::find(in_contact.begin(), in_contact.end(), bone) != in_contact.end();
+  };
+  femur.contact = takes_contact("femur");
   if (!bone_of(model, model.distal_bone))
     throw InputError("the model's distal footprint is bound to the " + model.distal_bone +
                      ", which the model has no surface of");
@@ -110,7 +109,7 @@ FebProblem knee_feb_problem(const KneeModel& model, const FlexionSettings& setti
     bone.surface = *surface;
     bone.center_mm = surface->V.colwise().mean().transpose();
     bone.attached_nodes = nodes_bound_to(model, name);
-    bone.contact = problem.contact && in_contact(settings.contact, name);
+    bone.contact = takes_contact(name);
     problem.bones.push_back(std::move(bone));
   }
   // The same start as ligsim's pre-push (sim/flexion/initial_overlap): each bone the ligament

@@ -43,10 +43,7 @@ KneeContact::KneeContact(const KneeModel& model, const BoundaryConditions& condi
                          const ContactConfig& config, const fs::path& cache_dir)
 {
   validate(config);
-  std::vector<std::string> names = config.bones;
-  if (names.empty())
-    names = model.fibula ? std::vector<std::string>{"femur", "tibia", "fibula"}
-                         : std::vector<std::string>{"femur", "tibia"};
+  const std::vector<std::string> names = contact_bones(model, config.bones);
   const int node_count = static_cast<int>(model.mesh.V.rows());
   std::vector<ContactObstacle> obstacles;
   for (const std::string& name : names) {

@@ -84,6 +84,26 @@ const std::vector<int>& nodes_bound_to(const KneeModel& model, const std::string
   return bone == model.distal_bone ? model.tibia_nodes : none;
 }
 
+std::vector<std::string> contact_bones(const KneeModel& model,
+                                       const std::vector<std::string>& chosen)
+{
+  if (!chosen.empty())
+    return chosen;
+  std::vector<std::string> bones;
+  for (const char* name : {"femur", "tibia", "fibula"})
+    if (bone_of(model, name))
+      bones.push_back(name);
+  return bones;
+}
+
+std::string ligament_names(const std::vector<LigamentModel>& ligaments)
+{
+  std::string names;
+  for (const LigamentModel& ligament : ligaments)
+    names += (names.empty() ? "" : ", ") + ligament.name;
+  return names;
+}
+
 std::optional<std::pair<fs::path, KneeLigament>> knee_of_ligament_folder(const fs::path& dir)
 {
   const fs::path folder = fs::absolute(dir).lexically_normal();
@@ -138,13 +158,9 @@ LigamentModel load_ligament(const fs::path& dir, const std::string& single_name,
                             const std::string& job)
 {
   std::vector<LigamentModel> all = load_knee(dir, single_name);
-  if (all.size() > 1) {
-    std::string names;
-    for (const LigamentModel& ligament : all)
-      names += (names.empty() ? "" : ", ") + ligament.name;
+  if (all.size() > 1)
     fail("{}: {} is a knee of {} ligaments ({}): give one ligament's folder (--model {})", job,
-         dir.string(), all.size(), names, all.front().folder.string());
-  }
+         dir.string(), all.size(), ligament_names(all), all.front().folder.string());
   return std::move(all.front());
 }
 

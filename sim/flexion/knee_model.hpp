@@ -111,6 +111,14 @@ const TriangleSurface* bone_of(const KneeModel& model, const std::string& name);
 /// the distal one's to model.distal_bone, none to another bone.
 const std::vector<int>& nodes_bound_to(const KneeModel& model, const std::string& bone);
 
+/// The bones the ligament takes contact with: those `chosen` names (a config's [contact]
+/// bones), or, when it names none, every bone the model has.
+std::vector<std::string> contact_bones(const KneeModel& model,
+                                       const std::vector<std::string>& chosen);
+
+/// The ligaments' names, joined by ", " (for messages).
+std::string ligament_names(const std::vector<LigamentModel>& ligaments);
+
 /// Up the leg: from the tibia's mean vertex to the femur's (a hint for the axis fit and the
 /// pictures' up direction, not an anatomical axis).
 Eigen::Vector3d proximal_direction(const KneeModel& model);

@@ -86,9 +86,7 @@ std::string linear_tets_for_frames(std::vector<LigamentModel>& ligaments)
 std::vector<LigamentModel> chosen_ligaments(std::vector<LigamentModel> all,
                                             const FlexionSettings& settings)
 {
-  std::string names;
-  for (const LigamentModel& ligament : all)
-    names += (names.empty() ? "" : ", ") + ligament.name;
+  const std::string names = ligament_names(all);
   const auto known = [&](const std::string& name) {
     return std::any_of(all.begin(), all.end(),
                        [&](const LigamentModel& l) { return l.name == name; });
