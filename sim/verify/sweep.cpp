@@ -2,9 +2,8 @@
 
 #include "common/error.hpp"
 #include "common/resources.hpp"
-#include "sim/mesh/node_selection.hpp"
-#include "sim/mesh/structured_mesh.hpp"
 #include "sim/mesh/tet_shape.hpp"
+#include "sim/verify/cube_compression.hpp"
 #include "sim/verify/cube_verification.hpp"
 
 #include <fmt/format.h>
@@ -29,16 +28,6 @@ struct CubeSolution {
   FebioMesh mesh;
   Points displacement;
 };
-
-FebioMesh generated_cube(int cells, double edge_mm)
-{
-  FebioMesh cube;
-  cube.mesh = structured_cube_mesh(cells, edge_mm);
-  const double tolerance = 1e-9 * edge_mm;
-  cube.bottom_nodes = nodes_on_plane(cube.mesh.V, 2, 0.0, tolerance);
-  cube.top_nodes = nodes_on_plane(cube.mesh.V, 2, edge_mm, tolerance);
-  return cube;
-}
 
 /// Displacement of the finest solution at `p`, by barycentric interpolation in the tet of the
 /// structured grid that contains it.
@@ -92,7 +81,7 @@ CubeSolution solve_cube(int cells, const FebioCase& c, const NewtonSettings& set
 {
   CubeSolution solution;
   solution.cells = cells;
-  solution.mesh = generated_cube(cells, edge_mm);
+  solution.mesh = structured_cube(cells, edge_mm);
   // The case's total force (its per-node force on FEBio's 17 x 17 top nodes), shared equally
   // by this mesh's top nodes.
   FebioCase scaled = c;
@@ -146,7 +135,7 @@ std::vector<SweepRow> run_sweep(const FebioReference& reference, const FebioCase
 {
   const double edge = reference.edge_mm;
   const Points febio =
-      read_febio_displacements(c.displacements, generated_cube(16, edge).mesh.V.rows());
+      read_febio_displacements(c.displacements, structured_cube(16, edge).mesh.V.rows());
   const std::optional<double> continuum = continuum_top_uz(reference, c.name);
   auto finish = [&](SweepRow& row) {
     row.continuum_difference_pct = continuum ? 100.0 * (row.avg_top_uz_mm / *continuum - 1.0)
@@ -184,7 +173,7 @@ std::vector<SweepRow> run_sweep(const FebioReference& reference, const FebioCase
     row.cells = 16;
     row.converged = true;
     row.wall_s = *c.febio.wall_s;
-    const CubeSolution solution{16, generated_cube(16, edge), febio};
+    const CubeSolution solution{16, structured_cube(16, edge), febio};
     row.elements = static_cast<int>(solution.mesh.mesh.T.rows());
     for (int node : solution.mesh.top_nodes)
       row.avg_top_uz_mm += febio(node, 2) / static_cast<double>(solution.mesh.top_nodes.size());
