@@ -135,6 +135,19 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
   SceneRunReport run;
   StageMeter solve_meter;
   nlohmann::json solve_figures;
+  // One step or frame: its report with the reactions at `number` and `at` (load factor or time)
+  // into summary.json and the CSV, the contact's figures, and, when `write`, its state.
+  const auto record = [&](nlohmann::json entry, int number, double at, double load_factor,
+                          const Eigen::VectorXd& state, const Eigen::VectorXd& residual,
+                          bool write) {
+    entry["reactions"] =
+        reactions_json(scene.conditions, state, residual, csv, fmt::format("{},{}", number, at));
+    if (contact)
+      entry["contact"] = contact_json(contact.get(), state, load_factor, contact_arrays);
+    entries.push_back(entry);
+    if (output && write)
+      output->write_step(number, at, state, contact_arrays);
+  };
 
   if (scene.kind == SceneKind::quasi_static) {
     StaticSolver solver(body, scene.conditions, scene.newton);
@@ -147,15 +160,9 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     const StaticResult result =
         solver.solve(x, [&](const StepReport& step, const Eigen::VectorXd& state,
                             const Eigen::VectorXd& residual) {
-          nlohmann::json entry = reports::to_json(step);
-          entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
-                                              fmt::format("{},{}", step.step, step.load_factor));
-          if (contact)
-            entry["contact"] = contact_json(contact.get(), state, step.load_factor, contact_arrays);
-          entries.push_back(entry);
           const bool last = step.step == scene.newton.load_steps;
-          if (output && (step.step % scene.output.every == 0 || last))
-            output->write_step(step.step, step.load_factor, state, contact_arrays);
+          record(reports::to_json(step), step.step, step.load_factor, step.load_factor, state,
+                 residual, step.step % scene.output.every == 0 || last);
           progress.advance();
         });
     progress.finish();
@@ -177,16 +184,10 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
     Eigen::VectorXd x = body.rest_positions();
     if (output)
       output->write_step(0, 0.0, x);
-    auto record = [&](const FrameReport& frame, const Eigen::VectorXd& state,
-                      const Eigen::VectorXd& residual) {
-      nlohmann::json entry = reports::to_json(frame);
-      entry["reactions"] = reactions_json(scene.conditions, state, residual, csv,
-                                          fmt::format("{},{}", frame.frame, frame.time_s));
-      if (contact)
-        entry["contact"] = contact_json(contact.get(), state, frame.load_factor, contact_arrays);
-      entries.push_back(entry);
-      if (output)
-        output->write_step(frame.frame, frame.time_s, state, contact_arrays);
+    const auto record_frame = [&](const FrameReport& frame, const Eigen::VectorXd& state,
+                                  const Eigen::VectorXd& residual) {
+      record(reports::to_json(frame), frame.frame, frame.time_s, frame.load_factor, state, residual,
+             true);
     };
     // Every output frame is recorded as it comes; the last one always.
     FrameReport last;
@@ -196,14 +197,14 @@ SceneRunReport run_scene(const Scene& scene, const fs::path& out, RunSummary& su
                           const Eigen::VectorXd& residual) {
           last = frame;
           if (frame.frame % scene.output.every == 0)
-            record(frame, state, residual);
+            record_frame(frame, state, residual);
           else
             last_residual = residual;
         });
     run.success = result.completed;
     run.failure = result.failure;
     if (last.frame > 0 && last.frame % scene.output.every != 0)
-      record(last, x, last_residual);
+      record_frame(last, x, last_residual);
     solve_figures = {{"completed", result.completed},
                      {"reached_equilibrium", result.reached_equilibrium},
                      {"frames", result.frames},
