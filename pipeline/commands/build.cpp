@@ -25,7 +25,6 @@
 #include <vtkPolyData.h>
 
 #include <memory>
-#include <tuple>
 
 namespace ligsim::cli {
 
@@ -226,6 +225,45 @@ nlohmann::json report_thin_ligaments(const pipeline::KneeConfig& knee, const fs:
   return json;
 }
 
+/// What the repairs of a build's surfaces did, as summary.json holds it.
+struct InputRepairs {
+  nlohmann::json bones = nlohmann::json::object();     ///< per bone given
+  nlohmann::json ligaments = nlohmann::json::object(); ///< per ligament name ("" for one alone)
+};
+
+/// Reads and repairs every surface of a build before any stage runs, so that bad input leaves
+/// nothing behind: the bones (name, file; no file, no bone) and the ligaments (name, build
+/// config; "" for a one-ligament build), each ligament required to lie near a bone. Once all are
+/// read, says each repair on stderr.
+InputRepairs read_inputs(const std::vector<std::pair<std::string, fs::path>>& bone_files,
+                         const std::vector<std::pair<std::string, const BuildConfig*>>& ligaments)
+{
+  InputRepairs repairs;
+  std::vector<std::string> lines;
+  std::vector<std::pair<std::string, TriangleSurface>> bones;
+  for (const auto& [name, file] : bone_files) {
+    repair::Report report;
+    if (auto bone = pipeline::load_bone(file, &report)) {
+      bones.emplace_back(name, std::move(*bone));
+      repairs.bones[name] = repair::to_json(report);
+      for (const std::string& line : repair::describe(report))
+        lines.push_back(fmt::format("{} repair: {}", name, line));
+    }
+  }
+  for (const auto& [name, config] : ligaments) {
+    repair::Report report;
+    const TriangleSurface surface = pipeline::load_ligament(*config, nullptr, &report);
+    pipeline::require_a_bone_nearby(name.empty() ? "the ligament" : "ligament " + name, surface,
+                                    bones);
+    repairs.ligaments[name] = repair::to_json(report);
+    for (const std::string& line : repair::describe(report))
+      lines.push_back(fmt::format("{}surface repair: {}", name.empty() ? "" : name + " ", line));
+  }
+  for (const std::string& line : lines)
+    log_info(line);
+  return repairs;
+}
+
 /// A knee config: every ligament built in its own folder of `o.out`, the flags over each.
 void run_knee_build_job(const BuildOptions& o, const std::string& target,
                         const nlohmann::json& found_by_name = nullptr)
@@ -249,35 +287,20 @@ void run_knee_build_job(const BuildOptions& o, const std::string& target,
       pipeline::load_knee_config(o.config, with_flag_assignments(o, "ligament.")), out,
       label_report);
   pipeline::add_anatomy_parts(knee);
-  // Every input is read before a stage runs, so that bad input leaves nothing behind.
-  nlohmann::json bone_repair = nlohmann::json::object();
-  std::vector<std::pair<std::string, TriangleSurface>> bones;
-  for (const auto& [bone, file] :
-       {std::pair{"femur", knee.femur}, std::pair{"tibia", knee.tibia},
-        std::pair{"fibula", knee.fibula}, std::pair{"patella", knee.patella}}) {
-    if (file.empty())
-      continue;
-    repair::Report report;
-    bones.emplace_back(bone, *pipeline::load_bone(file, &report));
-    for (const std::string& line : repair::describe(report))
-      log_info(fmt::format("{} repair: {}", bone, line));
-    bone_repair[bone] = repair::to_json(report);
-  }
-  nlohmann::json repairs = nlohmann::json::object();
-  for (pipeline::LigamentConfig& ligament : knee.ligaments) {
-    repair::Report report;
-    const TriangleSurface surface = pipeline::load_ligament(ligament.build, nullptr, &report);
-    for (const std::string& line : repair::describe(report))
-      log_info(fmt::format("{} surface repair: {}", ligament.name, line));
-    repairs[ligament.name] = repair::to_json(report);
-    pipeline::require_a_bone_nearby("ligament " + ligament.name, surface, bones);
-  }
+  std::vector<std::pair<std::string, const BuildConfig*>> ligaments;
+  for (const pipeline::LigamentConfig& ligament : knee.ligaments)
+    ligaments.emplace_back(ligament.name, &ligament.build);
+  const InputRepairs repairs = read_inputs({{"femur", knee.femur},
+                                            {"tibia", knee.tibia},
+                                            {"fibula", knee.fibula},
+                                            {"patella", knee.patella}},
+                                           ligaments);
 
   RunSummary summary(target == "model" ? "build" : target);
   summary.inputs() = {{"config", o.config}, {"set", o.set}, {"knee", true}};
   summary.parameters() = pipeline::to_json(knee);
-  summary.results()["surface_repair"] = repairs;
-  summary.results()["bone_repair"] = bone_repair;
+  summary.results()["surface_repair"] = repairs.ligaments;
+  summary.results()["bone_repair"] = repairs.bones;
   if (!label_report.is_null())
     summary.results()["label_map"] = label_report;
   if (!found_by_name.is_null())
@@ -356,7 +379,7 @@ void run_build_job(const BuildOptions& o, const std::string& target)
   nlohmann::json label_report;
   std::string defaults_by_name;
   BuildConfig config;
-  repair::Report repairs, femur_repairs, tibia_repairs;
+  InputRepairs repairs;
   try {
     const StageMeter label_meter;
     config = pipeline::surfaces_from_labels(resolve_config(o), out, label_report);
@@ -374,27 +397,10 @@ void run_build_job(const BuildOptions& o, const std::string& target)
         defaults_by_name = used;
       }
     }
-    const TriangleSurface ligament = pipeline::load_ligament(config, nullptr, &repairs);
-    std::vector<std::pair<std::string, TriangleSurface>> bones;
-    for (const auto& [name, file, report] : {std::tuple{"femur", &config.femur, &femur_repairs},
-                                             std::tuple{"tibia", &config.tibia, &tibia_repairs}})
-      if (auto bone = pipeline::load_bone(*file, report))
-        bones.emplace_back(name, std::move(*bone));
-    pipeline::require_a_bone_nearby("the ligament", ligament, bones);
+    repairs = read_inputs({{"femur", config.femur}, {"tibia", config.tibia}}, {{"", &config}});
   } catch (const Error&) {
     clean_up();
     throw;
-  }
-  for (const std::string& line : repair::describe(repairs))
-    log_info(fmt::format("surface repair: {}", line));
-  nlohmann::json bone_repair = nlohmann::json::object();
-  for (const auto& [bone, file, report] : {std::tuple{"femur", &config.femur, &femur_repairs},
-                                           std::tuple{"tibia", &config.tibia, &tibia_repairs}}) {
-    if (file->empty())
-      continue;
-    for (const std::string& line : repair::describe(*report))
-      log_info(fmt::format("{} repair: {}", bone, line));
-    bone_repair[bone] = repair::to_json(*report);
   }
 
   RunSummary summary(target == "model" ? "build" : target);
@@ -405,8 +411,8 @@ void run_build_job(const BuildOptions& o, const std::string& target)
                       {"tibia", config.tibia.string()},
                       {"labels", config.labels.string()}};
   summary.parameters() = pipeline::to_json(config);
-  summary.results()["surface_repair"] = repair::to_json(repairs);
-  summary.results()["bone_repair"] = bone_repair;
+  summary.results()["surface_repair"] = repairs.ligaments.at("");
+  summary.results()["bone_repair"] = repairs.bones;
   if (!label_report.is_null())
     summary.results()["label_map"] = label_report;
   if (!defaults_by_name.empty())
