@@ -22,9 +22,11 @@ def cost_table(runs):
           "| sweep s (peak MiB) | angles converged | deepest free node in a bone (mm) |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
     for label, model, flexion, build_times, flexion_times in runs:
-        stages = json.loads((Path(model) / "summary.json").read_text())["stages"]
+        summary = json.loads((Path(model) / "summary.json").read_text())
+        stages, companion = summary["stages"], summary["results"]["companion"]
         mesh = stages["model"]["figures"]
-        companion = json.loads((Path(model) / "summary.json").read_text())["results"]["companion"]
+        build_s, build_mib = times(build_times)
+        sweep_s, sweep_mib = times(flexion_times)
         companion_text = (f"{stages['companion/model']['figures']['tets']:,}, "
                           f"{companion['size_ratio']:.2f} times" if companion["built"]
                           else "not built")
@@ -32,8 +34,7 @@ def cost_table(runs):
         converged = sum(int(r["converged"]) for r in rows)
         deepest = max(float(r["max_penetration_mm"]) for r in rows)
         print(f"| {label} | {mesh['tets']:,}, {mesh['nodes']:,} | {companion_text} "
-              f"| {times(build_times)[0]:.0f} ({times(build_times)[1]:.0f}) "
-              f"| {times(flexion_times)[0]:.0f} ({times(flexion_times)[1]:.0f}) "
+              f"| {build_s:.0f} ({build_mib:.0f}) | {sweep_s:.0f} ({sweep_mib:.0f}) "
               f"| {converged} of {len(rows)} | {deepest:.2g} |")
     print()
 
