@@ -158,9 +158,9 @@ TEST(ViewCli, AScriptedDragTo90DegreesDrawsEveryFrameAndEndsAtTheQuasiStaticForc
       "data/vhf-right-knee/flexion.toml");
 }
 
-/// The HRA female MCL as linear tets of 1.5 mm (10,014) on the passive knee's path: the view runs
-/// the shipped 10-node model's corners as linear tets, where the quasi-static sweep it is held
-/// against runs the 10-node tets.
+/// The HRA female MCL as linear tets of 1.5 mm (9,906) on the passive knee's path. Linear, as the
+/// view would run the shipped 10-node model's corners as linear tets where the quasi-static sweep
+/// it is held against runs the 10-node tets.
 TEST(ViewCli, TheHraMclDraggedTo90DegreesEndsAtTheQuasiStaticState)
 {
   if (!has_xvfb())
