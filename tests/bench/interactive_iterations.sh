@@ -5,7 +5,7 @@
 # 6,141-tet VHF MCL (data/vhf-right-knee/mcl.toml, the view-fps mesh) swept interactively with
 # one solve a frame (the paper's scheme) and with up to 12. One run after the other. Prints, as
 # Markdown for tests/bench/record.sh, the femur force per angle, the frames that met their
-# equation, the frames per second and the sweeps' wall seconds. Not a test: run it by hand
+# equation, the implicit Euler steps in all, the frames per second and the sweeps' wall seconds. Not a test: run it by hand
 # (about 15 minutes on 2 cores).
 #
 #   tests/bench/interactive_iterations.sh OUT
@@ -32,6 +32,8 @@ run hra_static "$LIGSIM" "${hra[@]}" --out "$OUT/hra_static"
 run hra_12 "$LIGSIM" "${hra[@]}" --mode interactive --out "$OUT/hra_12"
 run hra_4 "$LIGSIM" "${hra[@]}" --mode interactive --set interactive.max_iterations=4 \
   --out "$OUT/hra_4"
+# The first sweep after a build takes seconds longer (here 11 s against 3): warm up once.
+run vhf_warm_up "$LIGSIM" "${vhf[@]}" --out "$OUT/vhf_warm_up"
 run vhf_1 "$LIGSIM" "${vhf[@]}" --set interactive.max_iterations=1 --out "$OUT/vhf_1"
 run vhf_12 "$LIGSIM" "${vhf[@]}" --out "$OUT/vhf_12"
 
@@ -57,7 +59,7 @@ def tets(model):
 
 def fps(run):
     results = json.loads((out / run / "summary.json").read_text())["results"]
-    return f"{results['frames_per_second']:.0f}" if "frames_per_second" in results else ""
+    return f"{results['frames_per_second']:.3g}" if "frames_per_second" in results else ""
 
 
 runs = [("hra", "hra_static", "quasi-static"),
@@ -66,15 +68,19 @@ runs = [("hra", "hra_static", "quasi-static"),
         ("vhf", "vhf_1", "interactive, 1 solve a frame (the paper's scheme)"),
         ("vhf", "vhf_12", "interactive, up to 12 solves a frame (default)")]
 print("Femur force (footprint, N) at each angle swept; converged: the rows whose frame met its "
-      "equation (quasi-static: whose pose converged).")
+      "equation (quasi-static: whose pose converged); steps: the implicit Euler steps of the "
+      "whole sweep, a frame done again in halves counting each half (flexion.csv's "
+      "`newton_iterations` in this mode).")
 print()
-print("| MCL (tets) | sweep | femur force per angle (N) | converged | frames per s | wall s |")
-print("| --- | --- | --- | ---: | ---: | ---: |")
+print("| MCL (tets) | sweep | femur force per angle (N) | converged | steps | frames per s "
+      "| wall s |")
+print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
 for model, run, label in runs:
     r = rows(run)
     forces = " / ".join(f"{float(x['femur_force_n']):.1f} at {float(x['angle_deg']):g}" for x in r)
     converged = sum(int(x["converged"]) for x in r)
     name = "HRA female, linear 0.6 mm" if model == "hra" else "VHF, 1.1 mm"
+    steps = f"{sum(int(x['newton_iterations']) for x in r):,}" if fps(run) else ""
     print(f"| {name} ({tets(model):,}) | {label} | {forces} | {converged} of {len(r)} "
-          f"| {fps(run)} | {wall_s(run):.0f} |")
+          f"| {steps} | {fps(run)} | {wall_s(run):.0f} |")
 EOF
