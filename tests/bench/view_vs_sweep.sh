@@ -79,13 +79,6 @@ for line in (out / "models.txt").read_text().splitlines():
               f"| {f'{computed} ({size} px wide)' if first else ''} |")
         first = False
 
-print()
-print("What the live knee's mesh costs: each ligament's whole pull on the femur "
-      "(`femur_net_force_n`, N) and its peak over 2 mm regions (%), shipped / live, both swept "
-      "quasi-statically on `data/hra-knee/flexion.toml`'s path:")
-print()
-
-
 def sweep_rows(name):
     with open(out / f"sweep_{name}" / "flexion.csv") as f:
         return {(r["ligament"], float(r["angle_deg"])): r for r in csv.DictReader(f)}
@@ -93,28 +86,30 @@ def sweep_rows(name):
 
 shipped, live = sweep_rows("knee-shipped"), sweep_rows("knee-live")
 angles = sorted({angle for _, angle in shipped})
-print("| ligament | " + " | ".join(f"{a:g} deg" for a in angles) + " |")
-print("| --- |" + " --- |" * len(angles))
-for ligament in dict.fromkeys(name for name, _ in shipped):
-    cells = []
-    for angle in angles:
-        a, b = shipped[(ligament, angle)], live[(ligament, angle)]
-        cells.append(f"{float(a['femur_net_force_n']):.1f} / {float(b['femur_net_force_n']):.1f} N, "
-                     f"{100 * float(a['max_regional_fiber_strain']):.1f} / "
-                     f"{100 * float(b['max_regional_fiber_strain']):.1f} %")
-    print(f"| {ligament} | " + " | ".join(cells) + " |")
 
-print()
-print("The overlay shows each femoral footprint's force (`femur_force_n`), not the whole pull: "
-      "footprint / whole pull (N), shipped; live:")
-print()
-print("| ligament | " + " | ".join(f"{a:g} deg" for a in angles) + " |")
-print("| --- |" + " --- |" * len(angles))
-for ligament in dict.fromkeys(name for name, _ in shipped):
-    cells = []
-    for angle in angles:
-        a, b = shipped[(ligament, angle)], live[(ligament, angle)]
-        cells.append(f"{float(a['femur_force_n']):.1f} / {float(a['femur_net_force_n']):.1f}; "
-                     f"{float(b['femur_force_n']):.1f} / {float(b['femur_net_force_n']):.1f}")
-    print(f"| {ligament} | " + " | ".join(cells) + " |")
+
+def per_ligament_and_angle(caption, cell):
+    """A table of cell(shipped row, live row) per ligament and angle."""
+    print()
+    print(caption)
+    print()
+    print("| ligament | " + " | ".join(f"{a:g} deg" for a in angles) + " |")
+    print("| --- |" + " --- |" * len(angles))
+    for ligament in dict.fromkeys(name for name, _ in shipped):
+        cells = [cell(shipped[(ligament, a)], live[(ligament, a)]) for a in angles]
+        print(f"| {ligament} | " + " | ".join(cells) + " |")
+
+
+per_ligament_and_angle(
+    "What the live knee's mesh costs: each ligament's whole pull on the femur "
+    "(`femur_net_force_n`, N) and its peak over 2 mm regions (%), shipped / live, both swept "
+    "quasi-statically on `data/hra-knee/flexion.toml`'s path:",
+    lambda a, b: (f"{float(a['femur_net_force_n']):.1f} / {float(b['femur_net_force_n']):.1f} N, "
+                  f"{100 * float(a['max_regional_fiber_strain']):.1f} / "
+                  f"{100 * float(b['max_regional_fiber_strain']):.1f} %"))
+per_ligament_and_angle(
+    "The overlay shows each femoral footprint's force (`femur_force_n`), not the whole pull: "
+    "footprint / whole pull (N), shipped; live:",
+    lambda a, b: (f"{float(a['femur_force_n']):.1f} / {float(a['femur_net_force_n']):.1f}; "
+                  f"{float(b['femur_force_n']):.1f} / {float(b['femur_net_force_n']):.1f}"))
 EOF
